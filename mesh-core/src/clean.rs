@@ -1,0 +1,490 @@
+//! Repairing triangle soups: weld coincident vertices, drop collapsed,
+//! degenerate and duplicate faces and unreferenced vertices, and orient faces
+//! consistently, with a report of every change.
+//!
+//! STL files store loose triangles, so readers weld with [`weld_vertices`]
+//! before building a [`TriMesh`]; [`clean`] does the whole repair.
+
+use glam::DVec3;
+
+use crate::error::{MeshError, Result};
+use crate::ids::{FaceId, HalfedgeId, VertexId};
+use crate::mesh::TriMesh;
+
+/// What [`clean`] should do. Every step is on by default except welding with
+/// a tolerance (exact welding is on).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CleanOptions {
+    /// Merge vertices closer than this distance (`Some(0.0)`: identical
+    /// positions only; `None`: no welding). Merging is transitive.
+    pub weld_tolerance: Option<f64>,
+    /// Drop faces whose area is zero up to [`Self::degenerate_tolerance`].
+    pub drop_degenerate: bool,
+    /// A face is degenerate when `2 * area <= degenerate_tolerance * longest_edge^2`
+    /// (scale-invariant; collinear and coincident corners).
+    pub degenerate_tolerance: f64,
+    /// Drop faces with the same three vertices as an earlier face, in any order.
+    pub drop_duplicates: bool,
+    /// Drop vertices that no face references (renumbering the rest in order).
+    pub drop_unreferenced: bool,
+    /// Flip faces so that neighbours agree, and closed components face outward.
+    pub orient: bool,
+}
+
+impl Default for CleanOptions {
+    fn default() -> Self {
+        Self {
+            weld_tolerance: Some(0.0),
+            drop_degenerate: true,
+            degenerate_tolerance: 1e-12,
+            drop_duplicates: true,
+            drop_unreferenced: true,
+            orient: true,
+        }
+    }
+}
+
+/// What [`clean`] changed.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct CleanReport {
+    /// Vertices merged into another by welding.
+    pub welded_vertices: usize,
+    /// Faces dropped because welding made two of their corners the same vertex.
+    pub collapsed_faces: usize,
+    /// Zero-area faces dropped.
+    pub degenerate_faces: usize,
+    /// Duplicate faces dropped.
+    pub duplicate_faces: usize,
+    /// Unreferenced vertices dropped.
+    pub unreferenced_vertices: usize,
+    /// Faces whose orientation was reversed.
+    pub flipped_faces: usize,
+    /// Components that admit no consistent orientation (Moebius-like) or
+    /// contain non-manifold edges, left as they were.
+    pub unorientable_components: usize,
+}
+
+impl CleanReport {
+    /// `true` when nothing changed.
+    pub fn is_unchanged(&self) -> bool {
+        *self == Self { unorientable_components: self.unorientable_components, ..Self::default() }
+    }
+}
+
+/// Merges vertices within `tolerance` of each other (transitively), keeping the
+/// position of the lowest-indexed vertex of each cluster, and rewrites `faces`.
+/// Returns the welded positions, faces (which may now repeat a vertex) and the
+/// number of merged vertices. Vertex order is kept.
+///
+/// Exact welding (`tolerance == 0`) sorts positions; with a tolerance, points
+/// are sorted into cells of that size and each is compared with the 27
+/// neighbouring cells. Cost O(n log n). Non-finite or negative tolerances
+/// are an error.
+pub fn weld_vertices(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    tolerance: f64,
+) -> Result<(Vec<DVec3>, Vec<[u32; 3]>, usize)> {
+    if !(tolerance >= 0.0 && tolerance.is_finite()) {
+        return Err(MeshError::InvalidOption { name: "weld_tolerance", reason: format!("{tolerance} is not >= 0") });
+    }
+    let n = positions.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    if tolerance == 0.0 {
+        let key = |p: DVec3| [p.x, p.y, p.z].map(|c| if c == 0.0 { 0u64 } else { c.to_bits() });
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        order.sort_unstable_by_key(|&i| (key(positions[i as usize]), i));
+        for w in order.windows(2) {
+            if key(positions[w[0] as usize]) == key(positions[w[1] as usize]) {
+                let root = parent[w[0] as usize];
+                parent[w[1] as usize] = root;
+            }
+        }
+    } else {
+        let cell = |p: DVec3| {
+            let c = (p / tolerance).floor();
+            [c.x, c.y, c.z].map(|x| x.clamp(i64::MIN as f64, i64::MAX as f64) as i64)
+        };
+        let mut order: Vec<([i64; 3], u32)> = (0..n).map(|i| (cell(positions[i]), i as u32)).collect();
+        order.sort_unstable();
+        let tol2 = tolerance * tolerance;
+        for &(c, i) in &order {
+            for dx in -1..=1i64 {
+                for dy in -1..=1i64 {
+                    for dz in -1..=1i64 {
+                        let nc = [c[0].saturating_add(dx), c[1].saturating_add(dy), c[2].saturating_add(dz)];
+                        let lo = order.partition_point(|(k, _)| *k < nc);
+                        for &(k, j) in &order[lo..] {
+                            if k != nc {
+                                break;
+                            }
+                            if j < i && positions[i as usize].distance_squared(positions[j as usize]) <= tol2 {
+                                union_min(&mut parent, i, j);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        for i in 0..n as u32 {
+            let r = find(&mut parent, i);
+            parent[i as usize] = r;
+        }
+    }
+    // parent[i] now points at the lowest index of i's cluster.
+    let mut remap = vec![0u32; n];
+    let mut welded = Vec::with_capacity(n);
+    for i in 0..n {
+        let root = parent[i] as usize;
+        if root == i {
+            remap[i] = welded.len() as u32;
+            welded.push(positions[i]);
+        } else {
+            remap[i] = remap[root];
+        }
+    }
+    let merged = n - welded.len();
+    let faces = faces.iter().map(|f| f.map(|v| remap[v as usize])).collect();
+    Ok((welded, faces, merged))
+}
+
+fn find(parent: &mut [u32], mut i: u32) -> u32 {
+    while parent[i as usize] != i {
+        let p = parent[i as usize];
+        parent[i as usize] = parent[p as usize];
+        i = p;
+    }
+    i
+}
+
+fn union_min(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+}
+
+/// `true` when twice the triangle's area is at most `tolerance` times its
+/// longest edge squared (collinear or coincident corners).
+pub fn is_degenerate_triangle([a, b, c]: [DVec3; 3], tolerance: f64) -> bool {
+    let longest2 = (b - a).length_squared().max((c - b).length_squared()).max((a - c).length_squared());
+    (b - a).cross(c - a).length() <= tolerance * longest2
+}
+
+/// Faces of zero area (see [`CleanOptions::degenerate_tolerance`]).
+pub fn degenerate_faces(mesh: &TriMesh, tolerance: f64) -> Vec<FaceId> {
+    mesh.face_ids().filter(|&f| is_degenerate_triangle(mesh.triangle(f), tolerance)).collect()
+}
+
+/// Faces that repeat the vertex set of an earlier face (in any order or
+/// orientation). Sort-based, O(F log F).
+pub fn duplicate_faces(faces: &[[u32; 3]]) -> Vec<FaceId> {
+    let mut keyed: Vec<([u32; 3], u32)> = faces
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let mut k = *f;
+            k.sort_unstable();
+            (k, i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    let mut dups: Vec<FaceId> = keyed.windows(2).filter(|w| w[0].0 == w[1].0).map(|w| FaceId(w[1].1)).collect();
+    dups.sort_unstable();
+    dups
+}
+
+/// Vertices that no face references.
+pub fn unreferenced_vertices(vertex_count: usize, faces: &[[u32; 3]]) -> Vec<VertexId> {
+    let mut used = vec![false; vertex_count];
+    for f in faces {
+        for &v in f {
+            used[v as usize] = true;
+        }
+    }
+    (0..vertex_count).filter(|&v| !used[v]).map(VertexId::new).collect()
+}
+
+/// Repairs a triangle soup according to `options` and builds the mesh.
+/// Indices must be in range and coordinates finite (otherwise the same errors
+/// as [`TriMesh::new`]); faces that repeat a vertex, before or after welding,
+/// are dropped and counted as collapsed.
+pub fn clean(positions: Vec<DVec3>, faces: Vec<[u32; 3]>, options: &CleanOptions) -> Result<(TriMesh, CleanReport)> {
+    let mut report = CleanReport::default();
+    // Validate indices and coordinates first, allowing repeated vertices.
+    for (f, tri) in faces.iter().enumerate() {
+        if let Some(&vertex) = tri.iter().find(|&&v| v as usize >= positions.len()) {
+            return Err(MeshError::IndexOutOfRange { face: FaceId::new(f), vertex, vertex_count: positions.len() });
+        }
+    }
+    if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+        let p = positions[v];
+        return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
+    }
+    let (positions, mut faces) = match options.weld_tolerance {
+        Some(tol) => {
+            let (p, f, merged) = weld_vertices(&positions, &faces, tol)?;
+            report.welded_vertices = merged;
+            (p, f)
+        }
+        None => (positions, faces),
+    };
+    let before = faces.len();
+    faces.retain(|[a, b, c]| a != b && b != c && a != c);
+    report.collapsed_faces = before - faces.len();
+
+    if options.drop_degenerate {
+        let before = faces.len();
+        let tol = options.degenerate_tolerance;
+        faces.retain(|f| !is_degenerate_triangle(f.map(|v| positions[v as usize]), tol));
+        report.degenerate_faces = before - faces.len();
+    }
+    if options.drop_duplicates {
+        let dups = duplicate_faces(&faces);
+        report.duplicate_faces = dups.len();
+        let mut keep = vec![true; faces.len()];
+        for f in dups {
+            keep[f.idx()] = false;
+        }
+        let mut k = keep.iter();
+        faces.retain(|_| *k.next().unwrap_or(&true));
+    }
+    let (positions, faces) = if options.drop_unreferenced {
+        let unused = unreferenced_vertices(positions.len(), &faces);
+        report.unreferenced_vertices = unused.len();
+        compact_vertices(positions, faces)
+    } else {
+        (positions, faces)
+    };
+    let mut mesh = TriMesh::new(positions, faces)?;
+    if options.orient {
+        let (flipped, unorientable) = orient_faces(&mesh);
+        report.unorientable_components = unorientable;
+        if flipped.iter().any(|&f| f) {
+            report.flipped_faces = flipped.iter().filter(|&&f| f).count();
+            let (p, mut f) = mesh.into_parts();
+            for (tri, &flip) in f.iter_mut().zip(&flipped) {
+                if flip {
+                    tri.swap(1, 2);
+                }
+            }
+            mesh = TriMesh::new(p, f)?;
+        }
+    }
+    Ok((mesh, report))
+}
+
+/// Removes unreferenced vertices, keeping the order of the others.
+fn compact_vertices(positions: Vec<DVec3>, mut faces: Vec<[u32; 3]>) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut remap = vec![u32::MAX; positions.len()];
+    for f in &faces {
+        for &v in f {
+            remap[v as usize] = 0;
+        }
+    }
+    let mut kept = Vec::with_capacity(positions.len());
+    for (i, p) in positions.into_iter().enumerate() {
+        if remap[i] == 0 {
+            remap[i] = kept.len() as u32;
+            kept.push(p);
+        }
+    }
+    for f in &mut faces {
+        *f = f.map(|v| remap[v as usize]);
+    }
+    (kept, faces)
+}
+
+/// Decides which faces to flip so that every manifold edge is traversed in
+/// opposite directions by its two faces, and closed components enclose a
+/// positive volume. Returns the flip flags and the number of components that
+/// cannot be oriented (left untouched). Breadth-first over faces, O(F).
+pub fn orient_faces(mesh: &TriMesh) -> (Vec<bool>, usize) {
+    let conn = mesh.connectivity();
+    let nf = mesh.face_count();
+    let mut flip = vec![false; nf];
+    let mut seen = vec![false; nf];
+    let mut unorientable = 0;
+    let mut queue = Vec::new();
+    let mut component = Vec::new();
+    for seed in 0..nf {
+        if seen[seed] {
+            continue;
+        }
+        seen[seed] = true;
+        queue.clear();
+        component.clear();
+        queue.push(seed);
+        let mut ok = true;
+        let mut closed = true;
+        while let Some(f) = queue.pop() {
+            component.push(f);
+            for k in 0..3 {
+                let h = HalfedgeId::of_corner(FaceId::new(f), k);
+                let e = conn.edge(h);
+                let hs = conn.edge_halfedges(e);
+                if hs.len() != 2 {
+                    closed = false;
+                    if hs.len() > 2 {
+                        ok = false;
+                    }
+                    continue;
+                }
+                let g = if hs[0] == h { hs[1] } else { hs[0] };
+                let nb = g.face().idx();
+                // Same direction in the input means the faces disagree.
+                let same_dir = conn.origin(g) == conn.origin(h);
+                let want = flip[f] ^ same_dir;
+                if seen[nb] {
+                    if flip[nb] != want {
+                        ok = false;
+                    }
+                } else {
+                    seen[nb] = true;
+                    flip[nb] = want;
+                    queue.push(nb);
+                }
+            }
+        }
+        if !ok {
+            unorientable += 1;
+            for &f in &component {
+                flip[f] = false;
+            }
+            continue;
+        }
+        if closed {
+            // Signed volume by the divergence theorem; make it positive.
+            let p = mesh.positions();
+            let volume: f64 = component
+                .iter()
+                .map(|&f| {
+                    let [a, b, c] = mesh.faces()[f].map(|v| p[v as usize]);
+                    let v = a.dot(b.cross(c));
+                    if flip[f] {
+                        -v
+                    } else {
+                        v
+                    }
+                })
+                .sum();
+            if volume < 0.0 {
+                for &f in &component {
+                    flip[f] = !flip[f];
+                }
+            }
+        }
+    }
+    (flip, unorientable)
+}
+
+impl TriMesh {
+    /// A repaired copy of this mesh and what changed (see [`clean`]).
+    pub fn cleaned(&self, options: &CleanOptions) -> Result<(TriMesh, CleanReport)> {
+        clean(self.positions().to_vec(), self.faces().to_vec(), options)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welds_loose_triangles() {
+        // Two loose triangles of a square, as STL stores them.
+        let p =
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+        let (w, f, merged) = weld_vertices(&p, &[[0, 1, 2], [3, 4, 5]], 0.0).unwrap();
+        assert_eq!(merged, 2);
+        assert_eq!(w.len(), 4);
+        assert_eq!(f, vec![[0, 1, 2], [0, 2, 3]]);
+    }
+
+    #[test]
+    fn welds_with_tolerance_transitively() {
+        let p = vec![DVec3::ZERO, DVec3::new(0.6e-3, 0.0, 0.0), DVec3::new(1.2e-3, 0.0, 0.0), DVec3::X];
+        let (w, _, merged) = weld_vertices(&p, &[], 1e-3).unwrap();
+        assert_eq!(merged, 2);
+        assert_eq!(w, vec![DVec3::ZERO, DVec3::X]);
+        assert!(weld_vertices(&p, &[], -1.0).is_err());
+        assert!(weld_vertices(&p, &[], f64::NAN).is_err());
+    }
+
+    #[test]
+    fn negative_zero_welds_with_zero() {
+        let p = vec![DVec3::ZERO, DVec3::new(-0.0, 0.0, 0.0)];
+        assert_eq!(weld_vertices(&p, &[], 0.0).unwrap().2, 1);
+    }
+
+    #[test]
+    fn clean_reports_every_change() {
+        let p = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0), // collinear with 0 and 1
+            DVec3::splat(9.0),         // unreferenced
+            DVec3::X,                  // duplicate of 1
+        ];
+        let faces = vec![[0, 1, 2], [1, 3, 2], [2, 1, 0], [0, 1, 4], [6, 3, 2], [0, 6, 1]];
+        let (m, r) = clean(p, faces, &CleanOptions::default()).unwrap();
+        assert_eq!(r.welded_vertices, 1);
+        assert_eq!(r.collapsed_faces, 1);
+        assert_eq!(r.degenerate_faces, 1);
+        assert_eq!(r.duplicate_faces, 2);
+        assert_eq!(r.unreferenced_vertices, 2);
+        assert_eq!(m.face_count(), 2);
+        assert_eq!(m.vertex_count(), 4);
+        assert!(m.connectivity().is_manifold());
+    }
+
+    #[test]
+    fn orients_a_tetrahedron_outward() {
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        // Consistent but inward, and one face flipped.
+        let faces = vec![[0, 1, 2], [0, 3, 1], [1, 3, 2], [0, 3, 2]];
+        let (m, r) = clean(p, faces, &CleanOptions::default()).unwrap();
+        assert!(m.connectivity().is_manifold());
+        assert_eq!(r.flipped_faces, 3);
+        let vol: f64 = m
+            .face_ids()
+            .map(|f| {
+                let [a, b, c] = m.triangle(f);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        assert!(vol > 0.0);
+    }
+
+    #[test]
+    fn moebius_strip_is_reported_unorientable() {
+        // A strip of 5 quads closed with a half twist.
+        let n = 5;
+        let mut p = Vec::new();
+        for i in 0..n {
+            let t = i as f64 / n as f64 * std::f64::consts::TAU;
+            for s in [-1.0, 1.0] {
+                let w = 0.3 * s;
+                let c = (t / 2.0).cos() * w;
+                p.push(DVec3::new((2.0 + c) * t.cos(), (2.0 + c) * t.sin(), (t / 2.0).sin() * w));
+            }
+        }
+        let mut faces = Vec::new();
+        for i in 0..n as u32 {
+            let (a, b) = (2 * i, 2 * i + 1);
+            let (c, d) = if i + 1 == n as u32 { (1, 0) } else { (2 * i + 2, 2 * i + 3) };
+            faces.push([a, c, b]);
+            faces.push([b, c, d]);
+        }
+        let (_, r) = clean(p, faces, &CleanOptions::default()).unwrap();
+        assert_eq!(r.unorientable_components, 1);
+        assert_eq!(r.flipped_faces, 0);
+    }
+
+    #[test]
+    fn clean_rejects_bad_indices() {
+        let e = clean(vec![DVec3::ZERO], vec![[0, 1, 2]], &CleanOptions::default()).unwrap_err();
+        assert!(matches!(e, MeshError::IndexOutOfRange { .. }));
+    }
+}

@@ -1,0 +1,627 @@
+//! Connectivity derived from the triangles: edges, half-edges, vertex rings,
+//! boundary loops, components, and a precise manifold report.
+//!
+//! Half-edge `3 f + k` runs from corner `k` of face `f` to corner `k + 1`, so
+//! `next`, `prev` and `face` are arithmetic ([`HalfedgeId::next`]); only
+//! `twin`, the edge of each half-edge and the vertex rings are stored. Boundary
+//! edges have a single half-edge whose twin is `None`.
+//!
+//! Construction is O(V + F) and sort-based: half-edges are bucketed by their
+//! smaller endpoint with a counting sort, then each (tiny) bucket is sorted by
+//! the larger endpoint, so equal edges become adjacent runs. No hashing.
+
+use std::sync::OnceLock;
+
+use crate::error::{MeshError, NonManifoldReport, Result};
+use crate::ids::{EdgeId, FaceId, HalfedgeId, VertexId};
+
+/// What the neighbourhood of a vertex looks like.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VertexKind {
+    /// Referenced by no face.
+    Isolated,
+    /// Its faces form one closed fan.
+    Interior,
+    /// Its faces form one open fan (two boundary edges meet at it).
+    Boundary,
+    /// More than one fan, or an endpoint of an edge with more than two faces.
+    NonManifold,
+}
+
+/// One closed boundary curve: the boundary half-edges in order, each ending
+/// where the next starts, with the faces on their left (so the loop of a
+/// counter-clockwise disk runs counter-clockwise).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BoundaryLoop {
+    /// The boundary half-edges in order.
+    pub halfedges: Vec<HalfedgeId>,
+    /// The origin vertex of each half-edge, in the same order.
+    pub vertices: Vec<VertexId>,
+}
+
+/// Connected parts of the mesh (through shared vertices).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Components {
+    /// Number of connected components (unreferenced vertices are not counted).
+    pub count: usize,
+    /// Component of each vertex; `u32::MAX` for unreferenced vertices.
+    pub vertex_component: Vec<u32>,
+    /// Component of each face.
+    pub face_component: Vec<u32>,
+}
+
+/// Half-edge connectivity of a [`crate::TriMesh`], valid for any triangle soup.
+/// Ordered ring queries are exact on vertices of kind `Interior`/`Boundary`
+/// when the mesh is consistently oriented ([`Connectivity::require_manifold`]).
+#[derive(Debug, Clone)]
+pub struct Connectivity {
+    corner_vertex: Vec<VertexId>,
+    twin: Vec<HalfedgeId>,
+    halfedge_edge: Vec<EdgeId>,
+    edges: Vec<[VertexId; 2]>,
+    edge_offsets: Vec<u32>,
+    edge_halfedges: Vec<HalfedgeId>,
+    vertex_offsets: Vec<u32>,
+    vertex_out: Vec<HalfedgeId>,
+    vertex_kind: Vec<VertexKind>,
+    report: NonManifoldReport,
+    components: OnceLock<Components>,
+    boundary_loops: OnceLock<Vec<BoundaryLoop>>,
+}
+
+impl Connectivity {
+    /// Builds the connectivity of `faces` over `vertex_count` vertices. Indices
+    /// must be in range (as [`crate::TriMesh::new`] guarantees). Cost O(V + F).
+    pub fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
+        let nh = faces.len() * 3;
+        let corner_vertex: Vec<VertexId> = faces.iter().flat_map(|f| f.map(VertexId)).collect();
+        let dest = |h: usize| corner_vertex[HalfedgeId(h as u32).next().idx()];
+
+        // Counting sort of half-edges by their smaller endpoint.
+        let mut bucket_offsets = vec![0u32; vertex_count + 1];
+        for h in 0..nh {
+            let lo = corner_vertex[h].0.min(dest(h).0);
+            bucket_offsets[lo as usize + 1] += 1;
+        }
+        for v in 0..vertex_count {
+            bucket_offsets[v + 1] += bucket_offsets[v];
+        }
+        let mut fill = bucket_offsets.clone();
+        let mut sorted = vec![HalfedgeId::INVALID; nh];
+        for h in 0..nh {
+            let lo = corner_vertex[h].0.min(dest(h).0) as usize;
+            sorted[fill[lo] as usize] = HalfedgeId(h as u32);
+            fill[lo] += 1;
+        }
+        drop(fill);
+        let hi_of = |h: HalfedgeId| corner_vertex[h.idx()].0.max(dest(h.idx()).0);
+        for v in 0..vertex_count {
+            let bucket = &mut sorted[bucket_offsets[v] as usize..bucket_offsets[v + 1] as usize];
+            if bucket.len() > 1 {
+                bucket.sort_unstable_by_key(|&h| (hi_of(h), h.0));
+            }
+        }
+        drop(bucket_offsets);
+
+        // Runs of equal (lo, hi) are edges.
+        let mut twin = vec![HalfedgeId::INVALID; nh];
+        let mut halfedge_edge = vec![EdgeId::INVALID; nh];
+        let mut edges = Vec::with_capacity(nh / 2 + 1);
+        let mut edge_offsets = Vec::with_capacity(nh / 2 + 2);
+        let mut report = NonManifoldReport::default();
+        let mut start = 0;
+        while start < nh {
+            let h0 = sorted[start];
+            let key = |h: HalfedgeId| (corner_vertex[h.idx()].0.min(dest(h.idx()).0), hi_of(h));
+            let k0 = key(h0);
+            let mut end = start + 1;
+            while end < nh && key(sorted[end]) == k0 {
+                end += 1;
+            }
+            let e = EdgeId::new(edges.len());
+            edges.push([VertexId(k0.0), VertexId(k0.1)]);
+            edge_offsets.push(start as u32);
+            for &h in &sorted[start..end] {
+                halfedge_edge[h.idx()] = e;
+            }
+            match end - start {
+                1 => {}
+                2 => {
+                    let h1 = sorted[start + 1];
+                    if corner_vertex[h0.idx()] != corner_vertex[h1.idx()] {
+                        twin[h0.idx()] = h1;
+                        twin[h1.idx()] = h0;
+                    } else {
+                        report.inconsistent_edges.push(e);
+                    }
+                }
+                _ => report.edges.push(e),
+            }
+            start = end;
+        }
+        edge_offsets.push(nh as u32);
+        let edge_halfedges = sorted;
+
+        // Outgoing half-edges per vertex (CSR), with each half-edge's slot.
+        let mut vertex_offsets = vec![0u32; vertex_count + 1];
+        for v in &corner_vertex {
+            vertex_offsets[v.idx() + 1] += 1;
+        }
+        for v in 0..vertex_count {
+            vertex_offsets[v + 1] += vertex_offsets[v];
+        }
+        let mut fill = vertex_offsets.clone();
+        let mut vertex_out = vec![HalfedgeId::INVALID; nh];
+        let mut slot_in_ring = vec![0u32; nh];
+        for (h, v) in corner_vertex.iter().enumerate() {
+            let s = fill[v.idx()];
+            vertex_out[s as usize] = HalfedgeId(h as u32);
+            slot_in_ring[h] = s - vertex_offsets[v.idx()];
+            fill[v.idx()] += 1;
+        }
+        drop(fill);
+
+        let edge_size = |e: EdgeId| edge_offsets[e.idx() + 1] - edge_offsets[e.idx()];
+        let mut nonmanifold_edge_vertex = vec![false; vertex_count];
+        for &e in &report.edges {
+            for v in edges[e.idx()] {
+                nonmanifold_edge_vertex[v.idx()] = true;
+            }
+        }
+        let mut unoriented_vertex = vec![false; vertex_count];
+        for &e in &report.inconsistent_edges {
+            for v in edges[e.idx()] {
+                unoriented_vertex[v.idx()] = true;
+            }
+        }
+
+        // Classify each vertex by its fans and order manifold rings counter-clockwise.
+        let mut vertex_kind = vec![VertexKind::Isolated; vertex_count];
+        let mut parent: Vec<u32> = Vec::new();
+        let mut ordered: Vec<HalfedgeId> = Vec::new();
+        for v in 0..vertex_count {
+            let range = vertex_offsets[v] as usize..vertex_offsets[v + 1] as usize;
+            let ring = &vertex_out[range.clone()];
+            let d = ring.len();
+            if d == 0 {
+                continue;
+            }
+            // Union the incident faces across edges at v that have exactly two faces.
+            parent.clear();
+            parent.extend(0..d as u32);
+            let mut on_boundary = false;
+            for (i, &h) in ring.iter().enumerate() {
+                for g in [h, h.prev()] {
+                    let e = halfedge_edge[g.idx()];
+                    match edge_size(e) {
+                        1 => on_boundary = true,
+                        2 => {
+                            let pair = &edge_halfedges[edge_offsets[e.idx()] as usize..][..2];
+                            let other = if pair[0] == g { pair[1] } else { pair[0] };
+                            // The other face's half-edge leaving v.
+                            let out = if corner_vertex[other.idx()].idx() == v { other } else { other.next() };
+                            union(&mut parent, i as u32, slot_in_ring[out.idx()]);
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            let fans = (0..d as u32).filter(|&i| find(&mut parent, i) == i).count();
+            vertex_kind[v] = if fans > 1 || nonmanifold_edge_vertex[v] {
+                if fans > 1 && !nonmanifold_edge_vertex[v] {
+                    report.vertices.push(VertexId::new(v));
+                }
+                VertexKind::NonManifold
+            } else if on_boundary {
+                VertexKind::Boundary
+            } else {
+                VertexKind::Interior
+            };
+            if fans == 1 && !nonmanifold_edge_vertex[v] && !unoriented_vertex[v] && d > 1 {
+                // Start at the boundary half-edge (no twin) if there is one, then
+                // rotate counter-clockwise: h -> twin(prev(h)).
+                let first = ring.iter().copied().find(|h| !twin[h.idx()].is_valid()).unwrap_or(ring[0]);
+                ordered.clear();
+                let mut h = first;
+                loop {
+                    ordered.push(h);
+                    let t = twin[h.prev().idx()];
+                    if !t.is_valid() || t == first || ordered.len() == d {
+                        break;
+                    }
+                    h = t;
+                }
+                if ordered.len() == d {
+                    vertex_out[range].copy_from_slice(&ordered);
+                }
+            }
+        }
+
+        Self {
+            corner_vertex,
+            twin,
+            halfedge_edge,
+            edges,
+            edge_offsets,
+            edge_halfedges,
+            vertex_offsets,
+            vertex_out,
+            vertex_kind,
+            report,
+            components: OnceLock::new(),
+            boundary_loops: OnceLock::new(),
+        }
+    }
+
+    /// Number of vertices (referenced or not).
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_kind.len()
+    }
+
+    /// Number of faces.
+    #[inline]
+    pub fn face_count(&self) -> usize {
+        self.corner_vertex.len() / 3
+    }
+
+    /// Number of undirected edges.
+    #[inline]
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Number of half-edges (three per face).
+    #[inline]
+    pub fn halfedge_count(&self) -> usize {
+        self.corner_vertex.len()
+    }
+
+    /// Number of vertices referenced by at least one face.
+    pub fn referenced_vertex_count(&self) -> usize {
+        self.vertex_kind.iter().filter(|k| **k != VertexKind::Isolated).count()
+    }
+
+    /// Where the half-edge starts.
+    #[inline]
+    pub fn origin(&self, h: HalfedgeId) -> VertexId {
+        self.corner_vertex[h.idx()]
+    }
+
+    /// Where the half-edge ends.
+    #[inline]
+    pub fn dest(&self, h: HalfedgeId) -> VertexId {
+        self.corner_vertex[h.next().idx()]
+    }
+
+    /// The vertex of the half-edge's face opposite to it.
+    #[inline]
+    pub fn opposite_vertex(&self, h: HalfedgeId) -> VertexId {
+        self.corner_vertex[h.prev().idx()]
+    }
+
+    /// The oppositely oriented half-edge of the neighbouring face, if the edge
+    /// is interior and manifold.
+    #[inline]
+    pub fn twin(&self, h: HalfedgeId) -> Option<HalfedgeId> {
+        let t = self.twin[h.idx()];
+        t.is_valid().then_some(t)
+    }
+
+    /// The undirected edge of a half-edge.
+    #[inline]
+    pub fn edge(&self, h: HalfedgeId) -> EdgeId {
+        self.halfedge_edge[h.idx()]
+    }
+
+    /// Endpoints of an edge, smaller index first.
+    #[inline]
+    pub fn edge_vertices(&self, e: EdgeId) -> [VertexId; 2] {
+        self.edges[e.idx()]
+    }
+
+    /// All edges, as endpoint pairs with the smaller index first, sorted.
+    #[inline]
+    pub fn edges(&self) -> &[[VertexId; 2]] {
+        &self.edges
+    }
+
+    /// The half-edges of an edge: one on the boundary, two inside a manifold,
+    /// more on a non-manifold edge.
+    #[inline]
+    pub fn edge_halfedges(&self, e: EdgeId) -> &[HalfedgeId] {
+        &self.edge_halfedges[self.edge_offsets[e.idx()] as usize..self.edge_offsets[e.idx() + 1] as usize]
+    }
+
+    /// The faces incident to an edge.
+    pub fn edge_faces(&self, e: EdgeId) -> impl ExactSizeIterator<Item = FaceId> + '_ {
+        self.edge_halfedges(e).iter().map(|h| h.face())
+    }
+
+    /// `true` when exactly one face has this edge.
+    #[inline]
+    pub fn is_boundary_edge(&self, e: EdgeId) -> bool {
+        self.edge_offsets[e.idx() + 1] - self.edge_offsets[e.idx()] == 1
+    }
+
+    /// The three edges of a face, edge `k` running from corner `k` to `k + 1`.
+    #[inline]
+    pub fn face_edges(&self, f: FaceId) -> [EdgeId; 3] {
+        let h = 3 * f.idx();
+        [self.halfedge_edge[h], self.halfedge_edge[h + 1], self.halfedge_edge[h + 2]]
+    }
+
+    /// The faces across the three edges of `f` (`None` on the boundary or
+    /// across a non-manifold or inconsistently oriented edge).
+    pub fn face_neighbors(&self, f: FaceId) -> [Option<FaceId>; 3] {
+        [0, 1, 2].map(|k| self.twin(HalfedgeId::of_corner(f, k)).map(|t| t.face()))
+    }
+
+    /// Half-edges leaving `v`: counter-clockwise for manifold vertices of an
+    /// oriented mesh, starting at the boundary edge on the boundary.
+    #[inline]
+    pub fn outgoing(&self, v: VertexId) -> &[HalfedgeId] {
+        &self.vertex_out[self.vertex_offsets[v.idx()] as usize..self.vertex_offsets[v.idx() + 1] as usize]
+    }
+
+    /// Faces around `v`, in the order of [`Connectivity::outgoing`].
+    pub fn vertex_faces(&self, v: VertexId) -> impl ExactSizeIterator<Item = FaceId> + '_ {
+        self.outgoing(v).iter().map(|h| h.face())
+    }
+
+    /// The 1-ring of `v`: its neighbours, ordered counter-clockwise on manifold
+    /// vertices (on the boundary, from one boundary neighbour to the other).
+    /// On non-manifold vertices every neighbour appears, some possibly twice.
+    pub fn neighbors(&self, v: VertexId) -> impl Iterator<Item = VertexId> + '_ {
+        let out = self.outgoing(v);
+        let closing = match (self.vertex_kind[v.idx()], out.last()) {
+            (VertexKind::Boundary, Some(&h)) => Some(self.opposite_vertex(h)),
+            _ => None,
+        };
+        let extra: Vec<VertexId> = if self.vertex_kind[v.idx()] == VertexKind::NonManifold {
+            // Every neighbour reached only by an incoming half-edge.
+            out.iter().map(|h| self.opposite_vertex(*h)).filter(|w| !out.iter().any(|g| self.dest(*g) == *w)).collect()
+        } else {
+            Vec::new()
+        };
+        out.iter().map(|&h| self.dest(h)).chain(closing).chain(extra)
+    }
+
+    /// Number of neighbours of `v` (the seed's valence |N(p_i)|).
+    pub fn valence(&self, v: VertexId) -> usize {
+        match self.vertex_kind[v.idx()] {
+            VertexKind::Isolated => 0,
+            VertexKind::Interior => self.outgoing(v).len(),
+            VertexKind::Boundary => self.outgoing(v).len() + 1,
+            VertexKind::NonManifold => self.neighbors(v).count(),
+        }
+    }
+
+    /// How the neighbourhood of `v` looks.
+    #[inline]
+    pub fn vertex_kind(&self, v: VertexId) -> VertexKind {
+        self.vertex_kind[v.idx()]
+    }
+
+    /// `true` for vertices on a boundary edge.
+    #[inline]
+    pub fn is_boundary_vertex(&self, v: VertexId) -> bool {
+        match self.vertex_kind[v.idx()] {
+            VertexKind::Boundary => true,
+            VertexKind::NonManifold => self
+                .outgoing(v)
+                .iter()
+                .any(|&h| self.is_boundary_edge(self.edge(h)) || self.is_boundary_edge(self.edge(h.prev()))),
+            _ => false,
+        }
+    }
+
+    /// Kinds of all vertices.
+    #[inline]
+    pub fn vertex_kinds(&self) -> &[VertexKind] {
+        &self.vertex_kind
+    }
+
+    /// Every manifold defect found while building.
+    #[inline]
+    pub fn non_manifold_report(&self) -> &NonManifoldReport {
+        &self.report
+    }
+
+    /// `true` when the mesh is an oriented 2-manifold, possibly with boundary.
+    #[inline]
+    pub fn is_manifold(&self) -> bool {
+        self.report.is_empty()
+    }
+
+    /// `Ok` for an oriented 2-manifold, otherwise [`MeshError::NonManifold`]
+    /// listing every defect.
+    pub fn require_manifold(&self) -> Result<()> {
+        if self.report.is_empty() {
+            Ok(())
+        } else {
+            Err(MeshError::NonManifold(Box::new(self.report.clone())))
+        }
+    }
+
+    /// Euler-Poincare characteristic chi = n - n_e + n_f (eq. 2.6), over
+    /// referenced vertices.
+    pub fn euler_characteristic(&self) -> i64 {
+        self.referenced_vertex_count() as i64 - self.edge_count() as i64 + self.face_count() as i64
+    }
+
+    /// Connected components through shared vertices (union-find, cached).
+    pub fn components(&self) -> &Components {
+        self.components.get_or_init(|| {
+            let n = self.vertex_count();
+            let mut parent: Vec<u32> = (0..n as u32).collect();
+            for f in self.corner_vertex.chunks_exact(3) {
+                union(&mut parent, f[0].0, f[1].0);
+                union(&mut parent, f[0].0, f[2].0);
+            }
+            let mut label = vec![u32::MAX; n];
+            let mut count = 0u32;
+            let mut vertex_component = vec![u32::MAX; n];
+            for v in 0..n {
+                if self.vertex_kind[v] == VertexKind::Isolated {
+                    continue;
+                }
+                let r = find(&mut parent, v as u32) as usize;
+                if label[r] == u32::MAX {
+                    label[r] = count;
+                    count += 1;
+                }
+                vertex_component[v] = label[r];
+            }
+            let face_component = self.corner_vertex.chunks_exact(3).map(|f| vertex_component[f[0].idx()]).collect();
+            Components { count: count as usize, vertex_component, face_component }
+        })
+    }
+
+    /// Boundary loops of a manifold mesh, in order of their first half-edge
+    /// (cached). Fails with [`MeshError::NonManifold`] otherwise.
+    pub fn boundary_loops(&self) -> Result<&[BoundaryLoop]> {
+        self.require_manifold()?;
+        Ok(self.boundary_loops.get_or_init(|| {
+            let nh = self.halfedge_count();
+            let mut visited = vec![false; nh];
+            let mut loops = Vec::new();
+            for start in 0..nh {
+                let h0 = HalfedgeId(start as u32);
+                if visited[start] || self.twin[start].is_valid() {
+                    continue;
+                }
+                let mut lp = BoundaryLoop { halfedges: Vec::new(), vertices: Vec::new() };
+                let mut h = h0;
+                // Each boundary vertex of a manifold has exactly one outgoing
+                // boundary half-edge, first in its counter-clockwise ring.
+                while !visited[h.idx()] {
+                    visited[h.idx()] = true;
+                    lp.halfedges.push(h);
+                    lp.vertices.push(self.origin(h));
+                    h = self.outgoing(self.dest(h))[0];
+                }
+                loops.push(lp);
+            }
+            loops
+        }))
+    }
+
+    /// Number of boundary loops, or `None` when the mesh is not manifold.
+    pub fn boundary_loop_count(&self) -> Option<usize> {
+        self.boundary_loops().ok().map(|l| l.len())
+    }
+
+    /// Genus from chi = 2 (c - g) - b (eq. 2.7), or `None` when the mesh is not
+    /// an oriented manifold.
+    pub fn genus(&self) -> Option<u64> {
+        let b = self.boundary_loop_count()? as i64;
+        let c = self.components().count as i64;
+        let twice = 2 * c - b - self.euler_characteristic();
+        (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u64)
+    }
+}
+
+fn find(parent: &mut [u32], mut i: u32) -> u32 {
+    while parent[i as usize] != i {
+        let p = parent[i as usize];
+        parent[i as usize] = parent[p as usize];
+        i = p;
+    }
+    i
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+        parent[hi as usize] = lo;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn conn(n: usize, faces: &[[u32; 3]]) -> Connectivity {
+        Connectivity::new(n, faces)
+    }
+
+    /// Two triangles sharing edge 1-2, a unit square.
+    const SQUARE: [[u32; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+    /// Tetrahedron, outward orientation.
+    const TET: [[u32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+
+    #[test]
+    fn square_has_five_edges_one_loop() {
+        let c = conn(4, &SQUARE);
+        assert_eq!(c.edge_count(), 5);
+        assert!(c.is_manifold());
+        assert_eq!(c.euler_characteristic(), 1);
+        let loops = c.boundary_loops().unwrap();
+        assert_eq!(loops.len(), 1);
+        assert_eq!(loops[0].vertices.len(), 4);
+        assert_eq!(c.genus(), Some(0));
+        assert_eq!(c.valence(VertexId(0)), 3);
+        assert_eq!(c.valence(VertexId(1)), 2);
+        let ring: Vec<_> = c.neighbors(VertexId(0)).collect();
+        assert_eq!(ring, vec![VertexId(1), VertexId(2), VertexId(3)]);
+    }
+
+    #[test]
+    fn tetrahedron_is_closed_sphere() {
+        let c = conn(4, &TET);
+        assert!(c.is_manifold());
+        assert_eq!(c.edge_count(), 6);
+        assert_eq!(c.euler_characteristic(), 2);
+        assert_eq!(c.boundary_loop_count(), Some(0));
+        assert_eq!(c.genus(), Some(0));
+        for h in 0..12 {
+            let h = HalfedgeId(h);
+            let t = c.twin(h).unwrap();
+            assert_eq!(c.twin(t), Some(h));
+            assert_eq!(c.origin(t), c.dest(h));
+        }
+        for v in 0..4 {
+            assert_eq!(c.vertex_kind(VertexId(v)), VertexKind::Interior);
+            assert_eq!(c.valence(VertexId(v)), 3);
+        }
+    }
+
+    #[test]
+    fn finds_nonmanifold_edge() {
+        // Three triangles on edge 0-1.
+        let c = conn(5, &[[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
+        assert_eq!(c.non_manifold_report().edges, vec![EdgeId(0)]);
+        assert!(c.boundary_loops().is_err());
+        assert_eq!(c.genus(), None);
+    }
+
+    #[test]
+    fn finds_bowtie_vertex() {
+        let c = conn(5, &[[0, 1, 2], [0, 3, 4]]);
+        assert_eq!(c.non_manifold_report().vertices, vec![VertexId(0)]);
+        assert_eq!(c.vertex_kind(VertexId(0)), VertexKind::NonManifold);
+        assert_eq!(c.components().count, 1);
+        assert_eq!(c.valence(VertexId(0)), 4);
+    }
+
+    #[test]
+    fn finds_inconsistent_orientation() {
+        assert!(conn(4, &SQUARE).is_manifold());
+        // Both faces traverse 2 -> 0.
+        let c = conn(4, &[[0, 1, 2], [0, 3, 2]]);
+        assert_eq!(c.non_manifold_report().inconsistent_edges, vec![EdgeId(1)]);
+        assert!(c.non_manifold_report().vertices.is_empty());
+        assert!(c.non_manifold_report().edges.is_empty());
+    }
+
+    #[test]
+    fn isolated_vertices_do_not_count() {
+        let c = conn(6, &SQUARE);
+        assert_eq!(c.referenced_vertex_count(), 4);
+        assert_eq!(c.euler_characteristic(), 1);
+        assert_eq!(c.components().count, 1);
+        assert_eq!(c.components().vertex_component[5], u32::MAX);
+    }
+}

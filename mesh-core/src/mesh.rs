@@ -1,0 +1,218 @@
+//! The triangle mesh itself: positions, triangles and lazily cached connectivity.
+
+use std::sync::OnceLock;
+
+use glam::DVec3;
+
+use crate::connectivity::Connectivity;
+use crate::error::{MeshError, Result};
+use crate::ids::{FaceId, VertexId};
+
+/// A triangle mesh: `f64` positions and counter-clockwise triangles.
+///
+/// Construction validates the input (indices in range, finite coordinates, no
+/// triangle repeating a vertex) so that every algorithm downstream can index
+/// without checks. Non-manifold, disconnected and degenerate (zero-area)
+/// meshes are valid `TriMesh`es: algorithms that need more ask for it and
+/// return a typed error.
+///
+/// Connectivity ([`TriMesh::connectivity`]) is derived from the triangles on
+/// first use, in O(F), and cached; moving vertices with
+/// [`TriMesh::positions_mut`] keeps it, since it depends only on the triangles.
+#[derive(Clone)]
+pub struct TriMesh {
+    positions: Vec<DVec3>,
+    faces: Vec<[u32; 3]>,
+    connectivity: OnceLock<Connectivity>,
+}
+
+impl TriMesh {
+    /// Builds a mesh after checking that every index is in range, every
+    /// coordinate finite and no triangle repeats a vertex. Cost O(V + F).
+    pub fn new(positions: Vec<DVec3>, faces: Vec<[u32; 3]>) -> Result<Self> {
+        if positions.len() >= u32::MAX as usize {
+            return Err(MeshError::TooLarge { what: "vertex", count: positions.len() });
+        }
+        // Half-edges are numbered 3 f + k in a u32.
+        if faces.len() >= (u32::MAX / 3) as usize {
+            return Err(MeshError::TooLarge { what: "face", count: faces.len() });
+        }
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            let p = positions[v];
+            return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
+        }
+        let n = positions.len();
+        for (f, tri) in faces.iter().enumerate() {
+            for &v in tri {
+                if v as usize >= n {
+                    return Err(MeshError::IndexOutOfRange { face: FaceId::new(f), vertex: v, vertex_count: n });
+                }
+            }
+            let [a, b, c] = *tri;
+            if a == b || a == c {
+                return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(a) });
+            }
+            if b == c {
+                return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(b) });
+            }
+        }
+        Ok(Self { positions, faces, connectivity: OnceLock::new() })
+    }
+
+    /// Builds a mesh from flat coordinate and index arrays (`xyz` holds three
+    /// numbers per vertex, `indices` three per triangle).
+    pub fn from_flat(xyz: &[f64], indices: &[u32]) -> Result<Self> {
+        if xyz.len() % 3 != 0 {
+            return Err(MeshError::Dimension(format!("{} coordinates is not a multiple of 3", xyz.len())));
+        }
+        if indices.len() % 3 != 0 {
+            return Err(MeshError::Dimension(format!("{} indices is not a multiple of 3", indices.len())));
+        }
+        let positions = xyz.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect();
+        let faces = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        Self::new(positions, faces)
+    }
+
+    /// Vertex positions.
+    #[inline]
+    pub fn positions(&self) -> &[DVec3] {
+        &self.positions
+    }
+
+    /// Mutable vertex positions. The cached connectivity stays valid, since it
+    /// depends only on the triangles. Callers must keep coordinates finite.
+    #[inline]
+    pub fn positions_mut(&mut self) -> &mut [DVec3] {
+        &mut self.positions
+    }
+
+    /// Replaces all positions at once (same count), keeping the connectivity.
+    pub fn set_positions(&mut self, positions: Vec<DVec3>) -> Result<()> {
+        if positions.len() != self.positions.len() {
+            return Err(MeshError::Dimension(format!(
+                "{} positions given for a mesh of {} vertices",
+                positions.len(),
+                self.positions.len()
+            )));
+        }
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            let p = positions[v];
+            return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
+        }
+        self.positions = positions;
+        Ok(())
+    }
+
+    /// Triangles as vertex index triples, counter-clockwise seen from outside.
+    #[inline]
+    pub fn faces(&self) -> &[[u32; 3]] {
+        &self.faces
+    }
+
+    /// Number of vertices (referenced or not).
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    #[inline]
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Position of one vertex.
+    #[inline]
+    pub fn position(&self, v: VertexId) -> DVec3 {
+        self.positions[v.idx()]
+    }
+
+    /// The three vertices of a face.
+    #[inline]
+    pub fn face(&self, f: FaceId) -> [VertexId; 3] {
+        let [a, b, c] = self.faces[f.idx()];
+        [VertexId(a), VertexId(b), VertexId(c)]
+    }
+
+    /// The three corner positions of a face.
+    #[inline]
+    pub fn triangle(&self, f: FaceId) -> [DVec3; 3] {
+        let [a, b, c] = self.faces[f.idx()];
+        [self.positions[a as usize], self.positions[b as usize], self.positions[c as usize]]
+    }
+
+    /// All vertex ids.
+    pub fn vertex_ids(&self) -> impl ExactSizeIterator<Item = VertexId> + use<> {
+        (0..self.positions.len() as u32).map(VertexId)
+    }
+
+    /// All face ids.
+    pub fn face_ids(&self) -> impl ExactSizeIterator<Item = FaceId> + use<> {
+        (0..self.faces.len() as u32).map(FaceId)
+    }
+
+    /// Connectivity (edges, half-edges, vertex rings, manifold report), built on
+    /// first call in O(V + F) and cached.
+    pub fn connectivity(&self) -> &Connectivity {
+        self.connectivity.get_or_init(|| Connectivity::new(self.positions.len(), &self.faces))
+    }
+
+    /// The connectivity, or [`MeshError::NonManifold`] with every defect when the
+    /// mesh is not an oriented 2-manifold (with or without boundary).
+    pub fn manifold_connectivity(&self) -> Result<&Connectivity> {
+        let c = self.connectivity();
+        c.require_manifold()?;
+        Ok(c)
+    }
+
+    /// Gives back positions and triangles.
+    pub fn into_parts(self) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        (self.positions, self.faces)
+    }
+}
+
+impl std::fmt::Debug for TriMesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TriMesh").field("vertices", &self.positions.len()).field("faces", &self.faces.len()).finish()
+    }
+}
+
+impl PartialEq for TriMesh {
+    /// Two meshes are equal when positions and triangles are (the cache is ignored).
+    fn eq(&self, other: &Self) -> bool {
+        self.positions == other.positions && self.faces == other.faces
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri() -> Vec<DVec3> {
+        vec![DVec3::ZERO, DVec3::X, DVec3::Y]
+    }
+
+    #[test]
+    fn validates_indices() {
+        let e = TriMesh::new(tri(), vec![[0, 1, 3]]).unwrap_err();
+        assert_eq!(e, MeshError::IndexOutOfRange { face: FaceId(0), vertex: 3, vertex_count: 3 });
+    }
+
+    #[test]
+    fn validates_repeats_and_nan() {
+        assert!(matches!(TriMesh::new(tri(), vec![[0, 1, 1]]), Err(MeshError::RepeatedVertex { .. })));
+        let mut p = tri();
+        p[2].z = f64::NAN;
+        assert!(matches!(
+            TriMesh::new(p, vec![[0, 1, 2]]),
+            Err(MeshError::NonFinitePosition { vertex: VertexId(2), .. })
+        ));
+    }
+
+    #[test]
+    fn flat_constructor() {
+        let m = TriMesh::from_flat(&[0., 0., 0., 1., 0., 0., 0., 1., 0.], &[0, 1, 2]).unwrap();
+        assert_eq!(m.face_count(), 1);
+        assert!(TriMesh::from_flat(&[0., 0.], &[]).is_err());
+    }
+}
