@@ -1,34 +1,57 @@
 //! Triangle meshes for geometry processing: the data model shared by every
-//! crate of the mesh workspace.
+//! crate of the mesh workspace, with the connectivity, topology, geometry,
+//! discrete operators and sparse solvers that the algorithm crates build on.
 //!
-//! - [`TriMesh`]: `f64` positions and triangles, validated at construction.
-//! - [`Connectivity`]: half-edges, edges, ordered 1-rings, boundary loops,
-//!   components and a precise manifold report, built once in O(F) and cached.
+//! | module | what it holds | seed section |
+//! |---|---|---|
+//! | [`mesh`] | [`TriMesh`]: validated `f64` positions and triangles | 2.2.2 |
+//! | [`ids`] | typed indices [`VertexId`], [`FaceId`], [`EdgeId`], [`HalfedgeId`] | |
+//! | [`connectivity`] | half-edges, edges, ordered 1-rings, boundary loops, components, manifold report, Euler characteristic and genus (eq. 2.6-2.7) | 2.2.2, 2.3 |
+//! | [`clean`] | welding, degenerate / duplicate / unreferenced removal, orientation, with a report | |
+//! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |
+//! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
+//! | [`solver`] | sparse Cholesky / LU on faer, Dirichlet-constrained solves | |
+//! | [`shapes`] | procedural shapes with exact ground truth | |
 //!
 //! ```
-//! use mesh_core::{TriMesh, glam::DVec3};
+//! use mesh_core::{shapes, operators, solver::Cholesky};
 //!
-//! let mesh = TriMesh::new(
-//!     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
-//!     vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
-//! )?;
-//! let c = mesh.connectivity();
-//! assert_eq!(c.euler_characteristic(), 2); // a sphere
-//! assert_eq!(c.genus(), Some(0));
+//! let mesh = shapes::icosphere(3)?;                 // 642 vertices on the unit sphere
+//! let c = mesh.connectivity();                      // built once, cached
+//! assert_eq!((c.euler_characteristic(), c.genus()), (2, Some(0)));
+//!
+//! // Backward Euler heat step (M + t L) u = M u0 with the cotangent Laplacian.
+//! let l = operators::cotan_laplacian(&mesh);
+//! let m = operators::mass_matrix(&mesh, operators::MassKind::MixedVoronoi);
+//! let a = &m + &l.map(|x| 1e-2 * x);
+//! let mut u = vec![0.0; mesh.vertex_count()];
+//! u[0] = m.get(0, 0).copied().unwrap_or(0.0);
+//! let u = Cholesky::new(&a)?.solve(&u)?;
+//! assert!(u.iter().all(|x| x.is_finite() && *x >= -1e-12));
 //! # Ok::<(), mesh_core::MeshError>(())
 //! ```
+//!
+//! Conventions: geometry is `f64`, points are `glam::DVec3`, triangles are
+//! counter-clockwise seen from outside, Laplacians are positive
+//! semi-definite, sparse matrices are `sprs::CsMat<f64>` in CSR. Nothing a
+//! user can feed in panics: invalid input is a [`MeshError`].
 #![deny(missing_docs)]
 
 pub mod clean;
 pub mod connectivity;
 pub mod error;
+pub mod geometry;
 pub mod ids;
 pub mod mesh;
+pub mod operators;
+pub mod shapes;
+pub mod solver;
 
 pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
 pub use error::{MeshError, NonManifoldReport, Result};
 pub use ids::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::TriMesh;
 
+pub use faer;
 pub use glam;
 pub use sprs;

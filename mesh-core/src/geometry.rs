@@ -1,0 +1,269 @@
+//! Per-element geometry: areas, normals, angles, edge lengths, dihedral
+//! angles, feature edges, bounding box, area and volume.
+//!
+//! Every function is a short loop over faces or edges, O(F), allocation of
+//! the output only. Degenerate (zero-area) faces give zero normals and zero
+//! areas, never NaN.
+
+use glam::DVec3;
+
+use crate::ids::{EdgeId, FaceId};
+use crate::mesh::TriMesh;
+
+/// Twice the signed area vector of a triangle: (b - a) x (c - a).
+#[inline]
+pub fn double_area_vector([a, b, c]: [DVec3; 3]) -> DVec3 {
+    (b - a).cross(c - a)
+}
+
+/// Area of a triangle.
+#[inline]
+pub fn triangle_area(tri: [DVec3; 3]) -> f64 {
+    0.5 * double_area_vector(tri).length()
+}
+
+/// Unit normal of a counter-clockwise triangle (the seed's face normal, 2.2.2),
+/// or zero when the triangle has no area.
+#[inline]
+pub fn triangle_normal(tri: [DVec3; 3]) -> DVec3 {
+    double_area_vector(tri).normalize_or_zero()
+}
+
+/// Angle between two vectors in [0, pi], robust for tiny and nearly parallel
+/// vectors (atan2 of the sine and cosine parts); 0 when one is zero.
+#[inline]
+pub fn angle_between(u: DVec3, v: DVec3) -> f64 {
+    u.cross(v).length().atan2(u.dot(v))
+}
+
+/// Interior angles of a triangle at its three corners (sum pi unless degenerate).
+#[inline]
+pub fn triangle_angles([a, b, c]: [DVec3; 3]) -> [f64; 3] {
+    [angle_between(b - a, c - a), angle_between(c - b, a - b), angle_between(a - c, b - c)]
+}
+
+/// Area of every face.
+pub fn face_areas(mesh: &TriMesh) -> Vec<f64> {
+    mesh.face_ids().map(|f| triangle_area(mesh.triangle(f))).collect()
+}
+
+/// Unit normal of every face (zero for zero-area faces).
+pub fn face_normals(mesh: &TriMesh) -> Vec<DVec3> {
+    mesh.face_ids().map(|f| triangle_normal(mesh.triangle(f))).collect()
+}
+
+/// Interior angle at each corner of every face, `[f][k]` at corner `k`.
+pub fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
+    mesh.face_ids().map(|f| triangle_angles(mesh.triangle(f))).collect()
+}
+
+/// How incident face normals are averaged into a vertex normal.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum NormalWeighting {
+    /// Plain average of unit face normals (the seed's point normal, 2.2.2).
+    Uniform,
+    /// Weighted by face area (libigl's `PER_VERTEX_NORMALS_WEIGHTING_TYPE_AREA`).
+    #[default]
+    Area,
+    /// Weighted by the corner angle at the vertex (Thurmer and Wuthrich 1998).
+    Angle,
+}
+
+/// Unit vertex normals: the normalized weighted sum of incident face normals.
+/// Isolated vertices, and vertices whose weighted sum vanishes, get zero.
+pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> {
+    let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
+    for (f, tri) in mesh.faces().iter().enumerate() {
+        let corners = mesh.triangle(FaceId::new(f));
+        let area2 = double_area_vector(corners);
+        match weighting {
+            NormalWeighting::Area => {
+                for &v in tri {
+                    normals[v as usize] += area2;
+                }
+            }
+            NormalWeighting::Uniform => {
+                let n = area2.normalize_or_zero();
+                for &v in tri {
+                    normals[v as usize] += n;
+                }
+            }
+            NormalWeighting::Angle => {
+                let n = area2.normalize_or_zero();
+                for (k, angle) in triangle_angles(corners).into_iter().enumerate() {
+                    normals[tri[k] as usize] += angle * n;
+                }
+            }
+        }
+    }
+    for n in &mut normals {
+        *n = n.normalize_or_zero();
+    }
+    normals
+}
+
+/// Length of every edge, indexed by [`EdgeId`].
+pub fn edge_lengths(mesh: &TriMesh) -> Vec<f64> {
+    let p = mesh.positions();
+    mesh.connectivity().edges().iter().map(|[a, b]| p[a.idx()].distance(p[b.idx()])).collect()
+}
+
+/// Mean edge length (0 for a mesh without edges).
+pub fn mean_edge_length(mesh: &TriMesh) -> f64 {
+    let lengths = edge_lengths(mesh);
+    if lengths.is_empty() {
+        0.0
+    } else {
+        lengths.iter().sum::<f64>() / lengths.len() as f64
+    }
+}
+
+/// Signed dihedral angle of every edge: the angle between the normals of its
+/// two faces, in [-pi, pi], positive where the surface is convex (the edge
+/// folds away from the normals), zero for flat, boundary and non-manifold
+/// edges and across zero-area faces.
+pub fn dihedral_angles(mesh: &TriMesh) -> Vec<f64> {
+    let conn = mesh.connectivity();
+    let p = mesh.positions();
+    (0..conn.edge_count())
+        .map(|e| {
+            let hs = conn.edge_halfedges(EdgeId::new(e));
+            let [h0, h1] = match hs {
+                [h0, h1] => [*h0, *h1],
+                _ => return 0.0,
+            };
+            let n0 = triangle_normal(mesh.triangle(h0.face()));
+            let n1 = triangle_normal(mesh.triangle(h1.face()));
+            if n0 == DVec3::ZERO || n1 == DVec3::ZERO {
+                return 0.0;
+            }
+            let angle = angle_between(n0, n1);
+            // Convex when the far corner of the second face lies below the first.
+            let far = p[conn.opposite_vertex(h1).idx()] - p[conn.origin(h0).idx()];
+            if far.dot(n0) > 0.0 {
+                -angle
+            } else {
+                angle
+            }
+        })
+        .collect()
+}
+
+/// Feature edges (seed 2.2.2): non-boundary edges whose face normals differ
+/// by more than `threshold` radians, convex or concave.
+pub fn feature_edges(mesh: &TriMesh, threshold: f64) -> Vec<EdgeId> {
+    dihedral_angles(mesh)
+        .into_iter()
+        .enumerate()
+        .filter(|(_, a)| a.abs() > threshold)
+        .map(|(e, _)| EdgeId::new(e))
+        .collect()
+}
+
+/// An axis-aligned bounding box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    /// Smallest coordinates.
+    pub min: DVec3,
+    /// Largest coordinates.
+    pub max: DVec3,
+}
+
+impl Aabb {
+    /// Length of the diagonal.
+    pub fn diagonal(&self) -> f64 {
+        (self.max - self.min).length()
+    }
+
+    /// Centre of the box.
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+}
+
+/// Bounding box of all vertices (referenced or not), `None` without vertices.
+pub fn bounding_box(mesh: &TriMesh) -> Option<Aabb> {
+    let p = mesh.positions();
+    let first = *p.first()?;
+    let (min, max) = p.iter().fold((first, first), |(lo, hi), &q| (lo.min(q), hi.max(q)));
+    Some(Aabb { min, max })
+}
+
+/// Total surface area.
+pub fn surface_area(mesh: &TriMesh) -> f64 {
+    mesh.face_ids().map(|f| triangle_area(mesh.triangle(f))).sum()
+}
+
+/// Signed volume enclosed by the mesh, sum of a . (b x c) / 6 over faces
+/// (divergence theorem). Exact for closed outward-oriented meshes; for open
+/// meshes it depends on the origin.
+pub fn enclosed_volume(mesh: &TriMesh) -> f64 {
+    mesh.face_ids()
+        .map(|f| {
+            let [a, b, c] = mesh.triangle(f);
+            a.dot(b.cross(c))
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+    use std::f64::consts::{FRAC_PI_2, PI};
+
+    #[test]
+    fn cube_geometry() {
+        let m = shapes::cube(2).unwrap();
+        assert!((surface_area(&m) - 24.0).abs() < 1e-12);
+        assert!((enclosed_volume(&m) - 8.0).abs() < 1e-12);
+        let dihedral = dihedral_angles(&m);
+        let sharp: Vec<_> = dihedral.iter().filter(|a| a.abs() > 0.1).collect();
+        // 12 cube edges of 2 mesh edges each, all convex right angles.
+        assert_eq!(sharp.len(), 24);
+        assert!(sharp.iter().all(|a| (**a - FRAC_PI_2).abs() < 1e-12));
+        assert_eq!(feature_edges(&m, 0.5).len(), 24);
+        let bb = bounding_box(&m).unwrap();
+        assert!((bb.diagonal() - 12f64.sqrt()).abs() < 1e-14);
+    }
+
+    #[test]
+    fn sphere_normals_point_outward() {
+        let m = shapes::icosphere(3).unwrap();
+        for w in [NormalWeighting::Uniform, NormalWeighting::Area, NormalWeighting::Angle] {
+            let n = vertex_normals(&m, w);
+            for (p, n) in m.positions().iter().zip(&n) {
+                assert!((n.length() - 1.0).abs() < 1e-12);
+                assert!(n.dot(*p) > 0.999);
+            }
+        }
+    }
+
+    #[test]
+    fn angles_sum_to_pi() {
+        let m = shapes::disk(4, 3).unwrap();
+        for a in corner_angles(&m) {
+            assert!((a.iter().sum::<f64>() - PI).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn concave_edges_are_negative() {
+        // Two triangles folded upward along the x axis: a valley seen from +z.
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(0.5, 1.0, 1.0), DVec3::new(0.5, -1.0, 1.0)];
+        let m = TriMesh::new(p, vec![[0, 1, 2], [1, 0, 3]]).unwrap();
+        let d = dihedral_angles(&m);
+        let inner = m.connectivity().edges().iter().position(|e| e[0].0 == 0 && e[1].0 == 1).unwrap();
+        assert!(d[inner] < 0.0);
+    }
+
+    #[test]
+    fn degenerate_faces_give_zero_not_nan() {
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)];
+        let m = TriMesh::new(p, vec![[0, 1, 2]]).unwrap();
+        assert_eq!(face_normals(&m)[0], DVec3::ZERO);
+        assert!(vertex_normals(&m, NormalWeighting::Angle).iter().all(|n| *n == DVec3::ZERO));
+        assert!(corner_angles(&m)[0].iter().all(|a| a.is_finite()));
+    }
+}

@@ -1,0 +1,121 @@
+//! Mass matrices: the area associated with each vertex (lumped) or the full
+//! Galerkin matrix of piecewise-linear hat functions.
+
+use sprs::CsMat;
+
+use super::laplacian::triangle_cotans;
+use super::pattern::EdgePattern;
+use crate::geometry::triangle_area;
+use crate::mesh::TriMesh;
+
+/// Which mass matrix.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum MassKind {
+    /// One third of each incident face's area (lumped).
+    Barycentric,
+    /// Mixed Voronoi areas of Meyer, Desbrun, Schroeder and Barr 2003: the
+    /// Voronoi area inside non-obtuse triangles, and half / a quarter of the
+    /// area of obtuse ones at the obtuse / other corners (lumped; libigl's
+    /// `MASSMATRIX_TYPE_VORONOI`). Sums to the total area.
+    #[default]
+    MixedVoronoi,
+    /// Full Galerkin mass M_ij = integral of phi_i phi_j: area/6 on the
+    /// diagonal and area/12 off it, per face.
+    Galerkin,
+}
+
+/// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
+/// the Galerkin matrix, which equals the barycentric area. Isolated vertices
+/// get zero. O(F).
+pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
+    let mut m = vec![0.0; mesh.vertex_count()];
+    for f in mesh.face_ids() {
+        let tri = mesh.triangle(f);
+        let corners = mesh.faces()[f.idx()];
+        let area = triangle_area(tri);
+        let share = match kind {
+            MassKind::Barycentric | MassKind::Galerkin => [area / 3.0; 3],
+            MassKind::MixedVoronoi => mixed_voronoi_shares(tri, area),
+        };
+        for k in 0..3 {
+            m[corners[k] as usize] += share[k];
+        }
+    }
+    m
+}
+
+/// The parts of one triangle's area given to its corners by the mixed
+/// Voronoi rule (Meyer et al. 2003, figure 4).
+fn mixed_voronoi_shares(tri: [glam::DVec3; 3], area: f64) -> [f64; 3] {
+    let [a, b, c] = tri;
+    let (ab, bc, ca) = ((b - a).dot(c - a), (c - b).dot(a - b), (a - c).dot(b - c));
+    // A corner is obtuse when the dot product of its two edges is negative.
+    if ab < 0.0 {
+        return [area / 2.0, area / 4.0, area / 4.0];
+    }
+    if bc < 0.0 {
+        return [area / 4.0, area / 2.0, area / 4.0];
+    }
+    if ca < 0.0 {
+        return [area / 4.0, area / 4.0, area / 2.0];
+    }
+    let [cot_a, cot_b, cot_c] = triangle_cotans(tri);
+    let (l_ab, l_bc, l_ca) = ((b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared());
+    // Voronoi area at a: (|ab|^2 cot C + |ac|^2 cot B) / 8.
+    [(l_ab * cot_c + l_ca * cot_b) / 8.0, (l_bc * cot_a + l_ab * cot_c) / 8.0, (l_ca * cot_b + l_bc * cot_a) / 8.0]
+}
+
+/// The mass matrix of the given kind as a sparse matrix (diagonal for the
+/// lumped kinds, edge pattern for Galerkin). O(V + F).
+pub fn mass_matrix(mesh: &TriMesh, kind: MassKind) -> CsMat<f64> {
+    match kind {
+        MassKind::Galerkin => {
+            let conn = mesh.connectivity();
+            let areas = crate::geometry::face_areas(mesh);
+            let mut w = vec![0.0; conn.edge_count()];
+            for h in 0..conn.halfedge_count() {
+                let h = crate::HalfedgeId(h as u32);
+                w[conn.edge(h).idx()] += areas[h.face().idx()] / 12.0;
+            }
+            // Diagonal: area/6 per face, which is the off-diagonal row sum
+            // (two edges of area/12 per face at each corner).
+            EdgePattern::new(mesh.vertex_count(), conn.edges()).symmetric(&w, |_, row_sum| row_sum)
+        }
+        _ => diagonal(lumped_mass(mesh, kind)),
+    }
+}
+
+/// A diagonal sparse matrix.
+pub fn diagonal(values: Vec<f64>) -> CsMat<f64> {
+    let n = values.len();
+    CsMat::new((n, n), (0..=n).collect(), (0..n).collect(), values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    #[test]
+    fn masses_sum_to_area() {
+        for m in [shapes::disk(5, 4).unwrap(), shapes::torus(2.0, 0.5, 24, 8).unwrap(), shapes::cube(3).unwrap()] {
+            let area = crate::geometry::surface_area(&m);
+            for kind in [MassKind::Barycentric, MassKind::MixedVoronoi, MassKind::Galerkin] {
+                let total: f64 = mass_matrix(&m, kind).data().iter().sum();
+                assert!((total - area).abs() < 1e-10 * area, "{kind:?}: {total} vs {area}");
+                let lumped: f64 = lumped_mass(&m, kind).iter().sum();
+                assert!((lumped - area).abs() < 1e-10 * area);
+            }
+        }
+    }
+
+    #[test]
+    fn voronoi_area_of_equilateral_corner_is_a_third() {
+        let h = 3f64.sqrt() / 2.0;
+        let tri = [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::new(0.5, h, 0.0)];
+        let area = triangle_area(tri);
+        for s in mixed_voronoi_shares(tri, area) {
+            assert!((s - area / 3.0).abs() < 1e-15);
+        }
+    }
+}
