@@ -1,0 +1,2 @@
+//! Geodesic distances on triangle meshes (work in progress).
+#![deny(missing_docs)]
