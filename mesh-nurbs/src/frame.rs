@@ -21,12 +21,14 @@
 //!   plane) every direction is principal and `d1` is `s_u` normalized.
 //! - At a degenerate point (`|s_u x s_v|` vanishing: a sphere pole, a cone
 //!   apex) `regular` is `false`, `point` and the derivatives are exact at the
-//!   parameter, and the normal, forms and curvatures are those at a parameter
-//!   moved by 1e-8 of the domain towards its centre (the limit from inside:
-//!   exact to about 1e-7 at a sphere pole; at a cone apex, where the mean
-//!   curvature is singular, it is large but finite). Nothing is ever NaN; if
-//!   the surface is degenerate there too, normal, directions and curvatures
-//!   are zero.
+//!   parameter, the normal is the exact limit along the iso-line through the
+//!   point (from `s_uv`, see [`NurbsSurface::normal`]), and the forms,
+//!   curvatures and directions are those at a parameter moved by 1e-4 of the
+//!   domain towards its centre, with the directions projected onto the
+//!   tangent plane of the limit normal (at a sphere pole: exact to about
+//!   1e-8; at a cone apex, where the mean curvature is singular, large but
+//!   finite). Nothing is ever NaN; where no limit exists the normal,
+//!   directions and curvatures are zero.
 
 use glam::{DVec2, DVec3};
 
@@ -108,11 +110,7 @@ impl SurfaceFrame {
     pub(crate) fn from_derivatives(surface: &NurbsSurface, uv: DVec2, derivatives: SurfaceDerivatives) -> Self {
         let (shape, regular) = match Shape::of(&derivatives) {
             Some(shape) => (shape, true),
-            None => {
-                let (u, v) = surface.nudge(uv.x, uv.y);
-                let nearby = surface.derivatives_at::<3>(u, v);
-                (Shape::of(&nearby).unwrap_or_default(), false)
-            }
+            None => (Shape::limit(surface, uv, &derivatives), false),
         };
         let Shape { normal, e, f, g, l, m, n, gaussian, mean, k1, k2, d1, d2 } = shape;
         Self { uv, derivatives, normal, e, f, g, l, m, n, gaussian, mean, k1, k2, d1, d2, regular }
@@ -155,6 +153,19 @@ impl Shape {
         let d2 = normal.cross(d1);
         let shape = Self { normal, e, f, g, l, m, n, gaussian, mean, k1, k2, d1, d2 };
         shape.is_finite().then_some(shape)
+    }
+
+    /// Limits at a degenerate point (see the module documentation).
+    fn limit(surface: &NurbsSurface, uv: DVec2, d: &SurfaceDerivatives) -> Self {
+        let Some(normal) = surface.limit_normal(uv.x, uv.y, d) else {
+            return Self::default();
+        };
+        let (u, v) = surface.nudge(uv.x, uv.y);
+        let mut shape = Shape::of(&surface.derivatives_at::<3>(u, v)).unwrap_or_default();
+        shape.normal = normal;
+        shape.d1 = (shape.d1 - normal * shape.d1.dot(normal)).normalize_or_zero();
+        shape.d2 = normal.cross(shape.d1);
+        shape
     }
 
     fn is_finite(&self) -> bool {

@@ -180,17 +180,38 @@ impl NurbsSurface {
     }
 
     /// Unit normal `n = s_u x s_v / |s_u x s_v|` (section 2.5). At a degenerate
-    /// point (a pole, an apex) it is the normal at a parameter moved by 1e-8 of
-    /// the domain towards its centre, the limit from inside; zero if the
-    /// surface is degenerate there too. Cost O(p^2 + q^2 + p q).
+    /// point it is the limit from inside the domain along the iso-line through
+    /// the point (see [`Self::limit_normal`]); zero if there is none.
+    /// Cost O(p^2 + q^2 + p q).
     pub fn normal(&self, u: f64, v: f64) -> Result<DVec3> {
         let d = self.derivatives(u, v, 1)?;
         if let Some(n) = unit_normal(d.su, d.sv) {
             return Ok(n);
         }
-        let (u, v) = self.nudge(u, v);
-        let d = self.derivatives(u, v, 1)?;
-        Ok(unit_normal(d.su, d.sv).unwrap_or(DVec3::ZERO))
+        let d = self.derivatives(u, v, 2)?;
+        Ok(self.limit_normal(self.knots_u.clamp(u), self.knots_v.clamp(v), &d).unwrap_or(DVec3::ZERO))
+    }
+
+    /// Normal at a degenerate point where one first derivative vanishes (a
+    /// pole, an apex), as the limit from inside the domain: if `s_u = 0` on the
+    /// side `v = v0`, then `s_u(u, v0 + e) = e s_uv + O(e^2)` and the normal is
+    /// `sign(e) s_uv x s_v` normalized (symmetrically when `s_v = 0`). Falls
+    /// back to the normal at a parameter moved inside by [`Self::nudge`].
+    /// `d` must hold second derivatives at `(u, v)`. Cost O(1), or one
+    /// evaluation for the fall-back.
+    pub(crate) fn limit_normal(&self, u: f64, v: f64, d: &SurfaceDerivatives) -> Option<DVec3> {
+        let (nu, nv) = self.nudge(u, v);
+        let taylor = if d.su.length_squared() <= d.sv.length_squared() {
+            d.suv.cross(d.sv) * (nv - v).signum()
+        } else {
+            d.su.cross(d.suv) * (nu - u).signum()
+        };
+        let n = taylor.normalize_or_zero();
+        if n != DVec3::ZERO {
+            return Some(n);
+        }
+        let near = self.derivatives_at::<2>(nu, nv);
+        unit_normal(near.su, near.sv)
     }
 
     /// Derivatives of orders `< N` (clamped finite parameters).
@@ -295,8 +316,10 @@ impl NurbsSurface {
         Self::new(self.knots_v.clone(), self.knots_u.clone(), points, weights)
     }
 
-    /// A parameter moved by 1e-8 of each domain length towards the centre of
-    /// the domain: where the limit at a degenerate point is taken.
+    /// A parameter moved by 1e-4 of each domain length towards the centre of
+    /// the domain: where limits at a degenerate point are taken. (Closer,
+    /// the first derivatives lose digits to cancellation in the quotient rule:
+    /// the error of the curvature grows like `1e-16 / step^2`.)
     pub(crate) fn nudge(&self, u: f64, v: f64) -> (f64, f64) {
         (nudge_in(self.domain_u(), u), nudge_in(self.domain_v(), v))
     }
@@ -304,7 +327,7 @@ impl NurbsSurface {
 
 fn nudge_in((a, b): (f64, f64), t: f64) -> f64 {
     let t = t.clamp(a, b);
-    let step = 1e-8 * (b - a);
+    let step = 1e-4 * (b - a);
     if t < 0.5 * (a + b) {
         t + step
     } else {
@@ -317,11 +340,12 @@ fn nudge_in((a, b): (f64, f64), t: f64) -> f64 {
 #[inline]
 pub(crate) fn unit_normal(su: DVec3, sv: DVec3) -> Option<DVec3> {
     let c = su.cross(sv);
-    let len2 = c.length_squared();
-    let scale = su.length_squared() * sv.length_squared();
-    // |su x sv| > 1e-10 |su| |sv| guards relative degeneracy; NaN fails it.
-    if len2 > 1e-20 * scale && len2 > 0.0 {
-        Some(c / len2.sqrt())
+    let len = c.length();
+    // |su x sv| > 1e-10 (|su|^2 + |sv|^2): scale-invariant, and it also catches
+    // a derivative that is only rounding noise (|su| ~ 1e-16 |sv| at a pole,
+    // in a random direction). NaN fails it.
+    if len > 1e-10 * (su.length_squared() + sv.length_squared()) && len > 0.0 {
+        Some(c / len)
     } else {
         None
     }
