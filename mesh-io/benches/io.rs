@@ -1,0 +1,3 @@
+//! Read and write throughput of every format (filled in below).
+
+fn main() {}

@@ -1,0 +1,283 @@
+//! What mesh files carry beyond positions and faces: [`MeshData`] (owned, as
+//! read), [`MeshView`] (borrowed, for writing) and the [`ReadReport`] of what a
+//! reader changed.
+
+use glam::{DVec2, DVec3};
+use mesh_core::TriMesh;
+
+use crate::error::{IoError, Location, Result};
+
+/// A mesh as read from a file, with the attributes the file carried.
+///
+/// Per-vertex attributes have one entry per vertex of [`MeshData::mesh`].
+/// Texture coordinates are per vertex ([`MeshData::uvs`]) when every vertex
+/// has a single one, and per face corner ([`MeshData::corner_uvs`]) when the
+/// file has UV seams (a vertex with different coordinates in different
+/// faces). Colours are linear RGBA in `[0, 1]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshData {
+    /// Positions and triangles.
+    pub mesh: TriMesh,
+    /// Per-vertex normals.
+    pub normals: Option<Vec<DVec3>>,
+    /// Per-vertex texture coordinates (OBJ/PLY convention: v points up).
+    pub uvs: Option<Vec<DVec2>>,
+    /// Per-face-corner texture coordinates, in the order of each face's vertices.
+    pub corner_uvs: Option<Vec<[DVec2; 3]>>,
+    /// Per-vertex RGBA colours in `[0, 1]`.
+    pub colors: Option<Vec<[f32; 4]>>,
+    /// Named per-vertex scalar fields (PLY properties, glTF `_NAME` attributes).
+    pub scalars: Vec<(String, Vec<f64>)>,
+    /// What the reader changed while building the mesh (empty when built in memory).
+    pub report: ReadReport,
+}
+
+impl MeshData {
+    /// A mesh with no attributes.
+    pub fn new(mesh: TriMesh) -> Self {
+        Self {
+            mesh,
+            normals: None,
+            uvs: None,
+            corner_uvs: None,
+            colors: None,
+            scalars: Vec::new(),
+            report: ReadReport::default(),
+        }
+    }
+
+    /// The named per-vertex scalar field, if present.
+    pub fn scalar(&self, name: &str) -> Option<&[f64]> {
+        self.scalars.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_slice())
+    }
+
+    /// A borrowed view for the writers.
+    pub fn view(&self) -> MeshView<'_> {
+        MeshView {
+            mesh: &self.mesh,
+            normals: self.normals.as_deref(),
+            uvs: self.uvs.as_deref(),
+            corner_uvs: self.corner_uvs.as_deref(),
+            colors: self.colors.as_deref(),
+            scalars: self.scalars.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect(),
+        }
+    }
+}
+
+impl From<TriMesh> for MeshData {
+    fn from(mesh: TriMesh) -> Self {
+        Self::new(mesh)
+    }
+}
+
+/// What a reader changed to turn the file into a [`TriMesh`], and what it left out.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ReadReport {
+    /// Polygons with more than three corners, split into a fan of triangles.
+    pub polygons_triangulated: usize,
+    /// Faces dropped because they repeat a vertex (for example STL triangles
+    /// that collapse when welded) or have fewer than three corners.
+    pub faces_dropped: usize,
+    /// Vertices merged into an identical one (STL welding).
+    pub vertices_welded: usize,
+    /// What the file held that was not read, one short sentence each.
+    pub notes: Vec<String>,
+}
+
+impl ReadReport {
+    /// `true` when the mesh is exactly what the file says.
+    pub fn is_clean(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// Fan-triangulates one polygon `(0, i, i + 1)`, counting polygons and
+    /// dropping (and counting) triangles that repeat a vertex. `emit` gets the
+    /// corner numbers within the polygon and the triangle's vertex indices.
+    pub(crate) fn triangulate(&mut self, polygon: &[u32], mut emit: impl FnMut([usize; 3], [u32; 3])) {
+        let n = polygon.len();
+        if n < 3 {
+            self.faces_dropped += 1;
+            return;
+        }
+        if n > 3 {
+            self.polygons_triangulated += 1;
+        }
+        for i in 1..n - 1 {
+            let corners = [0, i, i + 1];
+            let tri = corners.map(|k| polygon[k]);
+            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+                self.faces_dropped += 1;
+            } else {
+                emit(corners, tri);
+            }
+        }
+    }
+
+    /// Adds a note once.
+    pub(crate) fn note(&mut self, note: impl Into<String>) {
+        let note = note.into();
+        if !self.notes.contains(&note) {
+            self.notes.push(note);
+        }
+    }
+}
+
+/// A mesh and borrowed attributes, as the writers take them.
+///
+/// Built from a [`TriMesh`] (`MeshView::from(&mesh)`), from a [`MeshData`]
+/// ([`MeshData::view`]) or step by step:
+///
+/// ```
+/// # use mesh_io::MeshView;
+/// # let mesh = mesh_core::TriMesh::new(vec![mesh_core::glam::DVec3::ZERO; 3], vec![])?;
+/// let mean = vec![0.0; mesh.vertex_count()];
+/// let view = MeshView::new(&mesh).with_scalar("mean", &mean);
+/// assert_eq!(view.scalars.len(), 1);
+/// # Ok::<(), mesh_core::MeshError>(())
+/// ```
+///
+/// Each writer keeps what its format can hold (see the crate's format table)
+/// and leaves out the rest.
+#[derive(Debug, Clone)]
+pub struct MeshView<'a> {
+    /// Positions and triangles.
+    pub mesh: &'a TriMesh,
+    /// Per-vertex normals.
+    pub normals: Option<&'a [DVec3]>,
+    /// Per-vertex texture coordinates.
+    pub uvs: Option<&'a [DVec2]>,
+    /// Per-face-corner texture coordinates (take precedence over `uvs`).
+    pub corner_uvs: Option<&'a [[DVec2; 3]]>,
+    /// Per-vertex RGBA colours in `[0, 1]`.
+    pub colors: Option<&'a [[f32; 4]]>,
+    /// Named per-vertex scalar fields.
+    pub scalars: Vec<(&'a str, &'a [f64])>,
+}
+
+impl<'a> MeshView<'a> {
+    /// A view of the mesh alone.
+    pub fn new(mesh: &'a TriMesh) -> Self {
+        Self { mesh, normals: None, uvs: None, corner_uvs: None, colors: None, scalars: Vec::new() }
+    }
+
+    /// Adds per-vertex normals.
+    pub fn with_normals(mut self, normals: &'a [DVec3]) -> Self {
+        self.normals = Some(normals);
+        self
+    }
+
+    /// Adds per-vertex texture coordinates.
+    pub fn with_uvs(mut self, uvs: &'a [DVec2]) -> Self {
+        self.uvs = Some(uvs);
+        self
+    }
+
+    /// Adds per-face-corner texture coordinates.
+    pub fn with_corner_uvs(mut self, corner_uvs: &'a [[DVec2; 3]]) -> Self {
+        self.corner_uvs = Some(corner_uvs);
+        self
+    }
+
+    /// Adds per-vertex RGBA colours.
+    pub fn with_colors(mut self, colors: &'a [[f32; 4]]) -> Self {
+        self.colors = Some(colors);
+        self
+    }
+
+    /// Adds a named per-vertex scalar field.
+    pub fn with_scalar(mut self, name: &'a str, values: &'a [f64]) -> Self {
+        self.scalars.push((name, values));
+        self
+    }
+
+    /// Checks that every attribute has one entry per vertex (per face for
+    /// corner UVs); writers call this first.
+    pub fn check(&self) -> Result<()> {
+        let (nv, nf) = (self.mesh.vertex_count(), self.mesh.face_count());
+        let mut lengths = vec![
+            ("normals".to_owned(), self.normals.map(<[_]>::len), nv),
+            ("uvs".to_owned(), self.uvs.map(<[_]>::len), nv),
+            ("corner_uvs".to_owned(), self.corner_uvs.map(<[_]>::len), nf),
+            ("colors".to_owned(), self.colors.map(<[_]>::len), nv),
+        ];
+        lengths.extend(self.scalars.iter().map(|(n, v)| (format!("scalar `{n}`"), Some(v.len()), nv)));
+        match lengths.into_iter().find(|(_, found, expected)| found.is_some_and(|f| f != *expected)) {
+            Some((what, found, expected)) => {
+                Err(IoError::AttributeLength { what, expected, found: found.unwrap_or_default() })
+            }
+            None => Ok(()),
+        }
+    }
+}
+
+impl<'a> From<&'a TriMesh> for MeshView<'a> {
+    fn from(mesh: &'a TriMesh) -> Self {
+        Self::new(mesh)
+    }
+}
+
+impl<'a> From<&'a MeshData> for MeshView<'a> {
+    fn from(data: &'a MeshData) -> Self {
+        data.view()
+    }
+}
+
+/// Builds the [`TriMesh`], mapping its validation error to `at`.
+pub(crate) fn tri_mesh(positions: Vec<DVec3>, faces: Vec<[u32; 3]>, at: Location) -> Result<TriMesh> {
+    TriMesh::new(positions, faces).map_err(|source| IoError::Mesh { at, source })
+}
+
+/// Per-vertex attributes resolved from per-corner indices (OBJ `vt`/`vn`):
+/// `Ok(values)` when each vertex always uses the same value, or `Err(corner
+/// values)` when some vertex has several (a seam).
+pub(crate) fn per_vertex_or_corner<T: Copy + PartialEq + Default>(
+    vertex_count: usize,
+    faces: &[[u32; 3]],
+    corner_values: &[[T; 3]],
+) -> std::result::Result<Vec<T>, Vec<[T; 3]>> {
+    let mut values = vec![None; vertex_count];
+    for (face, corners) in faces.iter().zip(corner_values) {
+        for (&v, &value) in face.iter().zip(corners) {
+            match values[v as usize] {
+                None => values[v as usize] = Some(value),
+                Some(old) if old != value => return Err(corner_values.to_vec()),
+                Some(_) => {}
+            }
+        }
+    }
+    Ok(values.into_iter().map(Option::unwrap_or_default).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fan_triangulation_counts_polygons_and_collapses() {
+        let mut report = ReadReport::default();
+        let mut tris = Vec::new();
+        report.triangulate(&[0, 1, 2, 3, 4], |c, t| tris.push((c, t)));
+        assert_eq!(tris.len(), 3);
+        assert_eq!(tris[2], ([0, 3, 4], [0, 3, 4]));
+        report.triangulate(&[5, 6, 6], |_, _| panic!("collapsed"));
+        report.triangulate(&[5, 6], |_, _| panic!("too short"));
+        assert_eq!((report.polygons_triangulated, report.faces_dropped), (1, 2));
+        assert!(!report.is_clean());
+    }
+
+    #[test]
+    fn view_checks_lengths() {
+        let mesh = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
+        let short = [0.0; 2];
+        let e = MeshView::new(&mesh).with_scalar("k", &short).check().unwrap_err();
+        assert_eq!(e.to_string(), "scalar `k` has 2 entries, expected 3");
+        assert!(MeshData::new(mesh).view().check().is_ok());
+    }
+
+    #[test]
+    fn seams_give_corner_values() {
+        let faces = [[0, 1, 2], [0, 2, 3]];
+        assert_eq!(per_vertex_or_corner(4, &faces, &[[1, 2, 3], [1, 3, 4]]), Ok(vec![1, 2, 3, 4]));
+        assert!(per_vertex_or_corner(4, &faces, &[[1, 2, 3], [9, 3, 4]]).is_err());
+    }
+}

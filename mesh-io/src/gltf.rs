@@ -1,0 +1,719 @@
+//! glTF 2.0: `.gltf` (JSON) and `.glb` (binary).
+//!
+//! Reading takes every triangle primitive (`TRIANGLES`, `TRIANGLE_STRIP`,
+//! `TRIANGLE_FAN`) of every mesh instanced by the nodes of the default scene
+//! (the first scene when none is marked default; the root nodes when there is
+//! no scene), with each node's world transform applied to positions and
+//! normals (winding flipped under mirroring transforms). Primitives are
+//! concatenated without welding. Attributes kept: `NORMAL`, `TEXCOORD_0` (v
+//! flipped to the OBJ/PLY convention `v = 1 - v_gltf`), `COLOR_0`, and
+//! application-specific scalar attributes `_NAME` as scalars `NAME`; an
+//! attribute is kept only when every primitive has it. Buffers come from the
+//! GLB `BIN` chunk, `data:` URIs, or files next to the `.gltf` (given a base
+//! directory). Points, lines, morph targets, skins, materials and textures
+//! are not read; sparse accessors are refused.
+//!
+//! Writing produces one mesh with one triangle primitive: `POSITION`,
+//! `NORMAL`, `TEXCOORD_0`, `COLOR_0` and `_NAME` scalars as `f32`, `u32`
+//! indices. glTF stores one texture coordinate per vertex, so vertices with
+//! several corner UVs are split. JSON parsing and validation use the `gltf`
+//! crate; binary containers and accessors are decoded here with every offset
+//! checked.
+
+use std::borrow::Cow;
+use std::collections::{BTreeMap, HashMap};
+use std::io::Write;
+use std::path::Path;
+
+use ::gltf::json::{self, accessor::ComponentType, mesh::Semantic, validation::Checked};
+use glam::{DMat3, DMat4, DQuat, DVec2, DVec3};
+
+use crate::data::{tri_mesh, MeshData, MeshView, ReadReport};
+use crate::error::{excerpt, IoError, Location, Result};
+use crate::format::Format;
+
+fn loc() -> Location {
+    Location::new(Format::Gltf)
+}
+
+const GLB_MAGIC: &[u8; 4] = b"glTF";
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+const CHUNK_BIN: u32 = 0x004E_4942;
+
+/// Checks that `bytes` start with the GLB magic `glTF`.
+pub fn check_glb_magic(bytes: &[u8]) -> Result<()> {
+    if bytes.starts_with(GLB_MAGIC) {
+        Ok(())
+    } else {
+        Err(IoError::WrongMagic { at: Location::new(Format::Glb), expected: "`glTF`", found: excerpt(bytes) })
+    }
+}
+
+/// Reads glTF JSON or GLB from memory. External buffer files are looked up
+/// in `base_dir` (the `.gltf` file's directory); without one they are an
+/// [`IoError::Unsupported`]. Cost O(size).
+pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<MeshData> {
+    let (json, bin) = if bytes.starts_with(GLB_MAGIC) { split_glb(bytes)? } else { (bytes, None) };
+    let root = json::Root::from_slice(json).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
+    let root = ::gltf::Document::from_json(root).map_err(gltf_error)?.into_json();
+    let buffers = load_buffers(&root, bin, base_dir)?;
+    let mut parts = Parts::default();
+    for (mesh, transform) in mesh_instances(&root)? {
+        for primitive in root.meshes.get(mesh).map(|m| m.primitives.as_slice()).unwrap_or_default() {
+            parts.add(&root, &buffers, primitive, transform)?;
+        }
+    }
+    parts.finish()
+}
+
+fn gltf_error(source: ::gltf::Error) -> IoError {
+    IoError::Gltf { at: loc(), source }
+}
+
+/// A little-endian `u32` at `offset`, if there are four bytes.
+fn le_u32(bytes: &[u8], offset: usize) -> Option<u32> {
+    Some(u32::from_le_bytes(bytes.get(offset..offset.checked_add(4)?)?.try_into().ok()?))
+}
+
+/// Splits a GLB container into its JSON chunk and optional BIN chunk.
+fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>)> {
+    let at = Location::new(Format::Glb);
+    let (Some(version), Some(length)) = (le_u32(bytes, 4), le_u32(bytes, 8)) else {
+        return Err(IoError::truncated(at, "a 12-byte GLB header"));
+    };
+    if version != 2 {
+        return Err(IoError::unsupported(at, format!("GLB version {version}")));
+    }
+    let data = bytes.get(..length as usize).ok_or_else(|| {
+        IoError::truncated(at.clone(), format!("{length} bytes as the GLB header says, found {}", bytes.len()))
+    })?;
+    let chunk = |offset: usize| -> Result<Option<(u32, &[u8])>> {
+        if offset >= data.len() {
+            return Ok(None);
+        }
+        let (Some(len), Some(kind)) = (le_u32(data, offset), le_u32(data, offset + 4)) else {
+            return Err(IoError::truncated(at.clone(), "an 8-byte GLB chunk header"));
+        };
+        let body = data.get(offset + 8..).and_then(|rest| rest.get(..len as usize));
+        let body = body.ok_or_else(|| IoError::truncated(at.clone(), format!("a GLB chunk of {len} bytes")))?;
+        Ok(Some((kind, body)))
+    };
+    let json = match chunk(12)? {
+        Some((CHUNK_JSON, json)) => json,
+        _ => return Err(IoError::syntax(at, "a JSON chunk first", data.get(16..20).unwrap_or_default())),
+    };
+    let bin = match chunk(20 + json.len())? {
+        Some((CHUNK_BIN, bin)) => Some(bin),
+        _ => None,
+    };
+    Ok((json, bin))
+}
+
+/// The data of every buffer, checked against its declared length.
+fn load_buffers<'a>(root: &json::Root, bin: Option<&'a [u8]>, base_dir: Option<&Path>) -> Result<Vec<Cow<'a, [u8]>>> {
+    let mut out = Vec::with_capacity(root.buffers.len());
+    for (i, buffer) in root.buffers.iter().enumerate() {
+        let data: Cow<'a, [u8]> =
+            match buffer.uri.as_deref() {
+                None => Cow::Borrowed(
+                    bin.ok_or_else(|| IoError::truncated(loc(), format!("the GLB BIN chunk of buffer {i}")))?,
+                ),
+                Some(uri) if uri.starts_with("data:") => {
+                    let (_, payload) = uri.split_once(";base64,").ok_or_else(|| {
+                        IoError::unsupported(loc(), format!("buffer {i}: a data URI that is not base64"))
+                    })?;
+                    Cow::Owned(base64_decode(payload.as_bytes()).ok_or_else(|| {
+                        IoError::syntax(loc(), format!("base64 data in buffer {i}"), payload.as_bytes())
+                    })?)
+                }
+                Some(uri) => {
+                    let dir = base_dir.ok_or_else(|| {
+                        IoError::unsupported(loc(), format!("external buffer `{uri}` when reading from memory"))
+                    })?;
+                    let path = dir.join(percent_decode(uri));
+                    Cow::Owned(std::fs::read(&path).map_err(|e| IoError::io(&path, e))?)
+                }
+            };
+        if (data.len() as u64) < buffer.byte_length.0 {
+            let e = format!("buffer {i} of {} bytes, found {}", buffer.byte_length.0, data.len());
+            return Err(IoError::truncated(loc(), e));
+        }
+        out.push(data);
+    }
+    Ok(out)
+}
+
+/// Decodes `%XX` escapes of a relative URI.
+fn percent_decode(uri: &str) -> String {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex =
+            b.get(i + 1..i + 3).and_then(|h| std::str::from_utf8(h).ok()).and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (b[i], hex) {
+            (b'%', Some(byte)) => {
+                out.push(byte);
+                i += 3;
+            }
+            (byte, _) => {
+                out.push(byte);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+const BASE64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+/// Standard base64 with padding.
+fn base64_encode(data: &[u8]) -> String {
+    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
+    for chunk in data.chunks(3) {
+        let n = chunk.iter().enumerate().fold(0u32, |n, (k, &b)| n | u32::from(b) << (16 - 8 * k));
+        for k in 0..4 {
+            let c = if k <= chunk.len() { BASE64[(n >> (18 - 6 * k) & 63) as usize] } else { b'=' };
+            out.push(char::from(c));
+        }
+    }
+    out
+}
+
+/// Standard base64, padding optional; `None` on any other character.
+fn base64_decode(text: &[u8]) -> Option<Vec<u8>> {
+    let text = text.strip_suffix(b"==").or_else(|| text.strip_suffix(b"=")).unwrap_or(text);
+    let mut out = Vec::with_capacity(text.len() / 4 * 3 + 2);
+    let (mut acc, mut bits) = (0u32, 0);
+    for &c in text {
+        let v = BASE64.iter().position(|&b| b == c)? as u32;
+        acc = acc << 6 | v;
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            out.push((acc >> bits) as u8);
+            acc &= (1 << bits) - 1;
+        }
+    }
+    Some(out)
+}
+
+/// Every mesh instance of the default scene with its world transform.
+fn mesh_instances(root: &json::Root) -> Result<Vec<(usize, DMat4)>> {
+    let scene = root.scene.map(|s| s.value()).or((!root.scenes.is_empty()).then_some(0));
+    let roots: Vec<usize> = match scene.and_then(|s| root.scenes.get(s)) {
+        Some(scene) => scene.nodes.iter().map(|n| n.value()).collect(),
+        None if root.nodes.is_empty() => return Ok((0..root.meshes.len()).map(|m| (m, DMat4::IDENTITY)).collect()),
+        None => {
+            let mut is_child = vec![false; root.nodes.len()];
+            for child in root.nodes.iter().flat_map(|n| n.children.iter().flatten()) {
+                if let Some(c) = is_child.get_mut(child.value()) {
+                    *c = true;
+                }
+            }
+            (0..root.nodes.len()).filter(|&n| !is_child[n]).collect()
+        }
+    };
+    let mut visited = vec![false; root.nodes.len()];
+    let mut stack: Vec<(usize, DMat4)> = roots.into_iter().rev().map(|n| (n, DMat4::IDENTITY)).collect();
+    let mut instances = Vec::new();
+    while let Some((n, parent)) = stack.pop() {
+        let node = root.nodes.get(n).ok_or_else(|| IoError::syntax(loc(), "a node index", n.to_string().as_bytes()))?;
+        if std::mem::replace(&mut visited[n], true) {
+            return Err(IoError::syntax(
+                loc(),
+                "a node hierarchy that is a tree",
+                format!("node {n} twice").as_bytes(),
+            ));
+        }
+        let world = parent * local_transform(node);
+        if let Some(mesh) = node.mesh {
+            instances.push((mesh.value(), world));
+        }
+        stack.extend(node.children.iter().flatten().rev().map(|c| (c.value(), world)));
+    }
+    Ok(instances)
+}
+
+fn local_transform(node: &json::Node) -> DMat4 {
+    if let Some(m) = node.matrix {
+        return DMat4::from_cols_array(&m.map(f64::from));
+    }
+    let t = node.translation.map_or(DVec3::ZERO, |t| DVec3::from_array(t.map(f64::from)));
+    let r = node.rotation.map_or(DQuat::IDENTITY, |q| DQuat::from_array(q.0.map(f64::from)).normalize());
+    let s = node.scale.map_or(DVec3::ONE, |s| DVec3::from_array(s.map(f64::from)));
+    DMat4::from_scale_rotation_translation(s, r, t)
+}
+
+/// The values of an accessor as `f64` (normalized integers mapped to
+/// `[0, 1]` or `[-1, 1]`), `dims` per element, with every offset checked.
+fn accessor(root: &json::Root, buffers: &[Cow<'_, [u8]>], index: usize, dims: &[usize]) -> Result<(Vec<f64>, usize)> {
+    let bad = |what: String| IoError::syntax(loc(), what, format!("accessor {index}").as_bytes());
+    let acc = root.accessors.get(index).ok_or_else(|| bad("an accessor".into()))?;
+    if acc.sparse.is_some() {
+        return Err(IoError::unsupported(loc(), format!("sparse accessor {index}")));
+    }
+    let (Checked::Valid(component), Checked::Valid(kind)) = (&acc.component_type, &acc.type_) else {
+        return Err(bad("a valid component type".into()));
+    };
+    let (component, n) = (component.0, kind.multiplicity());
+    if !dims.contains(&n) {
+        return Err(bad(format!("{dims:?} components per element")));
+    }
+    let view =
+        acc.buffer_view.and_then(|v| root.buffer_views.get(v.value())).ok_or_else(|| bad("a buffer view".into()))?;
+    let buffer = buffers.get(view.buffer.value()).ok_or_else(|| bad("a buffer".into()))?;
+    let start = view.byte_offset.map_or(0, |o| o.0);
+    let data = start
+        .checked_add(view.byte_length.0)
+        .and_then(|end| buffer.get(usize::try_from(start).ok()?..usize::try_from(end).ok()?))
+        .ok_or_else(|| IoError::truncated(loc(), format!("buffer view {} within its buffer", view.buffer.value())))?;
+    let size = component.size();
+    let elem = size * n;
+    let stride = view.byte_stride.map_or(elem, |s| s.0).max(elem);
+    let (count, offset) = (acc.count.0, acc.byte_offset.map_or(0, |o| o.0));
+    let need = count
+        .checked_sub(1)
+        .map_or(Some(0), |last| last.checked_mul(stride as u64)?.checked_add(offset)?.checked_add(elem as u64));
+    if need.is_none_or(|need| need > data.len() as u64) {
+        return Err(IoError::truncated(loc(), format!("accessor {index}: {count} elements within its buffer view")));
+    }
+    let mut values = Vec::with_capacity(count as usize * n);
+    for i in 0..count as usize {
+        let base = offset as usize + i * stride;
+        for k in 0..n {
+            values.push(decode(component, &data[base + k * size..base + (k + 1) * size], acc.normalized));
+        }
+    }
+    Ok((values, n))
+}
+
+fn decode(component: ComponentType, b: &[u8], normalized: bool) -> f64 {
+    let (x, scale) = match component {
+        ComponentType::I8 => (f64::from(b[0] as i8), 127.0),
+        ComponentType::U8 => (f64::from(b[0]), 255.0),
+        ComponentType::I16 => (f64::from(i16::from_le_bytes([b[0], b[1]])), 32767.0),
+        ComponentType::U16 => (f64::from(u16::from_le_bytes([b[0], b[1]])), 65535.0),
+        ComponentType::U32 => (f64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])), 1.0),
+        ComponentType::F32 => (f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])), 1.0),
+    };
+    if normalized && scale != 1.0 {
+        (x / scale).max(-1.0)
+    } else {
+        x
+    }
+}
+
+/// Reads a primitive's attribute, if present: values and components per element.
+type AttributeReader<'a> = dyn Fn(&Semantic, &[usize]) -> Result<Option<(Vec<f64>, usize)>> + 'a;
+
+/// Primitives gathered into one mesh; an attribute list becomes `None` as
+/// soon as a primitive lacks it.
+#[derive(Default)]
+struct Parts {
+    positions: Vec<DVec3>,
+    faces: Vec<[u32; 3]>,
+    normals: Option<Vec<DVec3>>,
+    uvs: Option<Vec<DVec2>>,
+    colors: Option<Vec<[f32; 4]>>,
+    scalars: Vec<(String, Vec<f64>)>,
+    primitives: usize,
+    report: ReadReport,
+}
+
+impl Parts {
+    fn add(&mut self, root: &json::Root, buffers: &[Cow<'_, [u8]>], p: &json::mesh::Primitive, m: DMat4) -> Result<()> {
+        let mode = match p.mode {
+            Checked::Valid(mode) => mode,
+            Checked::Invalid => return Err(IoError::syntax(loc(), "a primitive mode", b"")),
+        };
+        let get = |s: &Semantic, dims: &[usize]| -> Result<Option<(Vec<f64>, usize)>> {
+            p.attributes.get(&Checked::Valid(s.clone())).map(|a| accessor(root, buffers, a.value(), dims)).transpose()
+        };
+        use json::mesh::Mode;
+        let (Some((xyz, _)), true) = (
+            get(&Semantic::Positions, &[3])?,
+            matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan),
+        ) else {
+            self.report.note("primitives that are not triangles, or have no positions, skipped");
+            return Ok(());
+        };
+        let nv = xyz.len() / 3;
+        let base = self.positions.len();
+        self.positions.extend(xyz.chunks_exact(3).map(|c| m.transform_point3(DVec3::new(c[0], c[1], c[2]))));
+        let indices = match p.indices {
+            Some(i) => accessor(root, buffers, i.value(), &[1])?.0,
+            None => (0..nv).map(|i| i as f64).collect(),
+        };
+        let flip = m.determinant() < 0.0;
+        for (t, corners) in triangles(mode, indices.len()).enumerate() {
+            let mut tri = [0u32; 3];
+            for (v, &c) in tri.iter_mut().zip(&corners) {
+                let i = indices[c];
+                if !(0.0..nv as f64).contains(&i) {
+                    let face = self.faces.len() + t;
+                    return Err(IoError::Index { at: loc(), face, what: "vertex", index: i as i64, count: nv });
+                }
+                *v = (base + i as usize) as u32;
+            }
+            if flip {
+                tri.swap(1, 2);
+            }
+            let Self { report, faces, .. } = self;
+            report.triangulate(&tri, |_, t| faces.push(t));
+        }
+        self.attributes(p, &get, nv, m)?;
+        self.primitives += 1;
+        Ok(())
+    }
+
+    fn attributes(&mut self, p: &json::mesh::Primitive, get: &AttributeReader<'_>, nv: usize, m: DMat4) -> Result<()> {
+        let first = self.primitives == 0;
+        let normal_matrix = DMat3::from_mat4(m).inverse().transpose();
+        let normals = get(&Semantic::Normals, &[3])?.map(|(v, _)| {
+            v.chunks_exact(3).map(|c| (normal_matrix * DVec3::new(c[0], c[1], c[2])).normalize_or_zero()).collect()
+        });
+        merge(&mut self.normals, normals, first, nv);
+        let uvs = get(&Semantic::TexCoords(0), &[2])?
+            .map(|(v, _)| v.chunks_exact(2).map(|c| DVec2::new(c[0], 1.0 - c[1])).collect());
+        merge(&mut self.uvs, uvs, first, nv);
+        let colors = get(&Semantic::Colors(0), &[3, 4])?.map(|(v, n)| {
+            v.chunks_exact(n).map(|c| [c[0], c[1], c[2], c.get(3).copied().unwrap_or(1.0)].map(|x| x as f32)).collect()
+        });
+        merge(&mut self.colors, colors, first, nv);
+        if first {
+            let names = p.attributes.keys().filter_map(|k| match k {
+                Checked::Valid(Semantic::Extras(name)) => Some((name.clone(), Vec::new())),
+                _ => None,
+            });
+            self.scalars = names.collect();
+        }
+        let mut scalars = Vec::with_capacity(self.scalars.len());
+        for (name, mut values) in std::mem::take(&mut self.scalars) {
+            match get(&Semantic::Extras(name.clone()), &[1])? {
+                Some((v, _)) if v.len() == nv => {
+                    values.extend(v);
+                    scalars.push((name, values));
+                }
+                _ => self.report.note(format!("scalar `{name}` dropped: not every primitive has it")),
+            }
+        }
+        self.scalars = scalars;
+        Ok(())
+    }
+
+    fn finish(self) -> Result<MeshData> {
+        let mut data = MeshData::new(tri_mesh(self.positions, self.faces, loc())?);
+        data.normals = self.normals;
+        data.uvs = self.uvs;
+        data.colors = self.colors;
+        data.scalars = self.scalars;
+        data.report = self.report;
+        Ok(data)
+    }
+}
+
+/// Appends a primitive's attribute, or drops the attribute when it lacks it.
+fn merge<T>(all: &mut Option<Vec<T>>, part: Option<Vec<T>>, first: bool, nv: usize) {
+    match (all.as_mut(), part) {
+        (Some(list), Some(part)) if part.len() == nv => list.extend(part),
+        (None, Some(part)) if first && part.len() == nv => *all = Some(part),
+        _ => *all = None,
+    }
+}
+
+/// Corner numbers of the triangles of a primitive with `n` indices.
+fn triangles(mode: json::mesh::Mode, n: usize) -> Box<dyn Iterator<Item = [usize; 3]>> {
+    use json::mesh::Mode;
+    match mode {
+        Mode::TriangleStrip => {
+            Box::new((0..n.saturating_sub(2)).map(|i| if i % 2 == 0 { [i, i + 1, i + 2] } else { [i + 1, i, i + 2] }))
+        }
+        Mode::TriangleFan => Box::new((1..n.saturating_sub(1)).map(|i| [0, i, i + 1])),
+        _ => Box::new((0..n / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2])),
+    }
+}
+
+/// Writes a binary glTF (`.glb`): one mesh, one triangle primitive, `f32`
+/// attributes and `u32` indices in the `BIN` chunk. Cost O(size).
+pub fn write_glb<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
+    let (root, bin) = document(view, false)?;
+    let json = json::serialize::to_vec(&root).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
+    let header = ::gltf::binary::Header { magic: *GLB_MAGIC, version: 2, length: 0 };
+    let glb = ::gltf::binary::Glb { header, json: Cow::Owned(json), bin: Some(Cow::Owned(bin)) };
+    glb.to_writer(out).map_err(gltf_error)
+}
+
+/// Writes glTF JSON (`.gltf`) with the buffer embedded as a base64 `data:`
+/// URI, so the file stands alone. Cost O(size).
+pub fn write_gltf<W: Write>(mut out: W, view: &MeshView<'_>) -> Result<()> {
+    let (root, _) = document(view, true)?;
+    let json = json::serialize::to_vec(&root).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
+    out.write_all(&json)?;
+    out.flush()?;
+    Ok(())
+}
+
+/// Vertices as glTF needs them: split where a vertex has several corner UVs.
+struct Split {
+    /// The original vertex of each written vertex.
+    source: Vec<u32>,
+    faces: Vec<[u32; 3]>,
+    uvs: Option<Vec<DVec2>>,
+}
+
+impl Split {
+    fn new(view: &MeshView<'_>) -> Self {
+        let mesh = view.mesh;
+        let Some(corner_uvs) = view.corner_uvs else {
+            let source = (0..mesh.vertex_count() as u32).collect();
+            return Self { source, faces: mesh.faces().to_vec(), uvs: view.uvs.map(<[_]>::to_vec) };
+        };
+        let mut ids: HashMap<(u32, [u64; 2]), u32> = HashMap::with_capacity(mesh.vertex_count());
+        let (mut source, mut uvs) = (Vec::new(), Vec::new());
+        let faces = mesh
+            .faces()
+            .iter()
+            .zip(corner_uvs)
+            .map(|(tri, uv)| {
+                [0, 1, 2].map(|k| {
+                    *ids.entry((tri[k], uv[k].to_array().map(f64::to_bits))).or_insert_with(|| {
+                        source.push(tri[k]);
+                        uvs.push(uv[k]);
+                        source.len() as u32 - 1
+                    })
+                })
+            })
+            .collect();
+        Self { source, faces, uvs: Some(uvs) }
+    }
+
+    fn gather<T: Copy>(&self, values: &[T]) -> Vec<T> {
+        self.source.iter().map(|&v| values[v as usize]).collect()
+    }
+}
+
+/// The glTF document and binary buffer for a view; `embed` puts the buffer
+/// in a `data:` URI.
+fn document(view: &MeshView<'_>, embed: bool) -> Result<(json::Root, Vec<u8>)> {
+    view.check()?;
+    let split = Split::new(view);
+    let mut doc = Doc::default();
+    let mut attributes = BTreeMap::new();
+    let positions = split.gather(view.mesh.positions());
+    if !positions.is_empty() {
+        let pos = positions.iter().map(|p| p.as_vec3().to_array()).collect::<Vec<_>>();
+        let min = (0..3).map(|k| pos.iter().map(|p| p[k]).fold(f32::INFINITY, f32::min)).collect::<Vec<_>>();
+        let max = (0..3).map(|k| pos.iter().map(|p| p[k]).fold(f32::NEG_INFINITY, f32::max)).collect::<Vec<_>>();
+        let bounds = Some((json::Value::from(min), json::Value::from(max)));
+        attributes.insert(Semantic::Positions, doc.floats(pos.as_flattened(), 3, bounds));
+    }
+    if let Some(n) = view.normals {
+        let n: Vec<f32> = split.gather(n).iter().flat_map(|n| n.as_vec3().to_array()).collect();
+        attributes.insert(Semantic::Normals, doc.floats(&n, 3, None));
+    }
+    if let Some(uvs) = &split.uvs {
+        let uv: Vec<f32> = uvs.iter().flat_map(|uv| [uv.x as f32, (1.0 - uv.y) as f32]).collect();
+        attributes.insert(Semantic::TexCoords(0), doc.floats(&uv, 2, None));
+    }
+    if let Some(c) = view.colors {
+        attributes.insert(Semantic::Colors(0), doc.floats(split.gather(c).as_flattened(), 4, None));
+    }
+    for (name, values) in &view.scalars {
+        let v: Vec<f32> = split.gather(values).iter().map(|&x| x as f32).collect();
+        attributes.insert(Semantic::Extras((*name).to_owned()), doc.floats(&v, 1, None));
+    }
+    let indices: Vec<u8> = split.faces.as_flattened().iter().flat_map(|i| i.to_le_bytes()).collect();
+    let has_faces = !split.faces.is_empty();
+    let indices = has_faces.then(|| {
+        let count = split.faces.len() * 3;
+        doc.accessor(
+            &indices,
+            count,
+            ComponentType::U32,
+            json::accessor::Type::Scalar,
+            json::buffer::Target::ElementArrayBuffer,
+            None,
+        )
+    });
+    let mode = if has_faces { json::mesh::Mode::Triangles } else { json::mesh::Mode::Points };
+    Ok(doc.finish(attributes, indices, mode, embed))
+}
+
+/// A glTF document under construction, with its binary buffer.
+#[derive(Default)]
+struct Doc {
+    root: json::Root,
+    bin: Vec<u8>,
+}
+
+impl Doc {
+    /// Adds `f32` data with `n` components per element.
+    fn floats(
+        &mut self,
+        values: &[f32],
+        n: usize,
+        bounds: Option<(json::Value, json::Value)>,
+    ) -> json::Index<json::Accessor> {
+        use json::accessor::Type;
+        let kind = [Type::Scalar, Type::Vec2, Type::Vec3, Type::Vec4][n - 1];
+        let bytes: Vec<u8> = values.iter().flat_map(|x| x.to_le_bytes()).collect();
+        self.accessor(&bytes, values.len() / n, ComponentType::F32, kind, json::buffer::Target::ArrayBuffer, bounds)
+    }
+
+    /// Adds a buffer view holding `bytes` and an accessor over it.
+    fn accessor(
+        &mut self,
+        bytes: &[u8],
+        count: usize,
+        component: ComponentType,
+        kind: json::accessor::Type,
+        target: json::buffer::Target,
+        bounds: Option<(json::Value, json::Value)>,
+    ) -> json::Index<json::Accessor> {
+        let offset = self.bin.len();
+        self.bin.extend_from_slice(bytes);
+        self.bin.resize(self.bin.len().next_multiple_of(4), 0);
+        let view = self.root.push(json::buffer::View {
+            buffer: json::Index::new(0),
+            byte_length: bytes.len().into(),
+            byte_offset: Some(offset.into()),
+            byte_stride: None,
+            target: Some(Checked::Valid(target)),
+            extensions: None,
+            extras: Default::default(),
+        });
+        let (min, max) = bounds.unzip();
+        self.root.push(json::Accessor {
+            buffer_view: Some(view),
+            byte_offset: None,
+            count: count.into(),
+            component_type: Checked::Valid(json::accessor::GenericComponentType(component)),
+            extensions: None,
+            extras: Default::default(),
+            type_: Checked::Valid(kind),
+            min,
+            max,
+            normalized: false,
+            sparse: None,
+        })
+    }
+
+    fn finish(
+        mut self,
+        attributes: BTreeMap<Semantic, json::Index<json::Accessor>>,
+        indices: Option<json::Index<json::Accessor>>,
+        mode: json::mesh::Mode,
+        embed: bool,
+    ) -> (json::Root, Vec<u8>) {
+        if !attributes.is_empty() {
+            let primitive = json::mesh::Primitive {
+                attributes: attributes.into_iter().map(|(k, v)| (Checked::Valid(k), v)).collect(),
+                extensions: None,
+                extras: Default::default(),
+                indices,
+                material: None,
+                mode: Checked::Valid(mode),
+                targets: None,
+            };
+            let mesh = self.root.push(json::Mesh {
+                extensions: None,
+                extras: Default::default(),
+                primitives: vec![primitive],
+                weights: None,
+            });
+            let nodes = vec![self.root.push(json::Node { mesh: Some(mesh), ..Default::default() })];
+            // gltf-json cannot read back a scene with no nodes: an empty mesh has no scene.
+            let scene = self.root.push(json::Scene { extensions: None, extras: Default::default(), nodes });
+            self.root.scene = Some(scene);
+        }
+        self.root.asset.generator = Some("mesh-io".to_owned());
+        if !self.bin.is_empty() {
+            let uri = embed.then(|| format!("data:application/octet-stream;base64,{}", base64_encode(&self.bin)));
+            self.root.push(json::Buffer {
+                byte_length: self.bin.len().into(),
+                uri,
+                extensions: None,
+                extras: Default::default(),
+            });
+        }
+        (self.root, self.bin)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mesh_core::TriMesh;
+
+    fn quad() -> MeshData {
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
+        let mut d = MeshData::new(TriMesh::new(p, vec![[0, 1, 2], [0, 2, 3]]).unwrap());
+        d.normals = Some(vec![DVec3::Z; 4]);
+        d.uvs = Some(vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]);
+        d.colors = Some(vec![[1.0, 0.5, 0.25, 1.0]; 4]);
+        d.scalars = vec![("mean".into(), vec![0.5, 1.5, 2.5, 3.5])];
+        d
+    }
+
+    #[test]
+    fn base64_round_trip() {
+        for n in 0..8 {
+            let data: Vec<u8> = (0..n).map(|i| (i * 77 + 3) as u8).collect();
+            assert_eq!(base64_decode(base64_encode(&data).as_bytes()).unwrap(), data);
+        }
+        assert_eq!(base64_encode(b"Man"), "TWFu");
+        assert!(base64_decode(b"a*b").is_none());
+        assert_eq!(percent_decode("my%20mesh.bin"), "my mesh.bin");
+    }
+
+    #[test]
+    fn glb_and_gltf_round_trip() {
+        let d = quad();
+        let mut glb = Vec::new();
+        write_glb(&mut glb, &d.view()).unwrap();
+        let mut text = Vec::new();
+        write_gltf(&mut text, &d.view()).unwrap();
+        for bytes in [glb, text] {
+            let back = read(&bytes, None).unwrap();
+            assert_eq!(back.mesh, d.mesh);
+            assert_eq!(back.normals, d.normals);
+            assert_eq!(back.uvs, d.uvs);
+            assert_eq!(back.colors, d.colors);
+            assert_eq!(back.scalars, d.scalars);
+        }
+    }
+
+    #[test]
+    fn corner_uvs_split_vertices() {
+        let mut d = quad();
+        d.uvs = None;
+        d.corner_uvs = Some(vec![[DVec2::ZERO, DVec2::X, DVec2::ONE], [DVec2::ZERO, DVec2::splat(0.5), DVec2::Y]]);
+        let mut glb = Vec::new();
+        write_glb(&mut glb, &d.view()).unwrap();
+        let back = read(&glb, None).unwrap();
+        assert_eq!(back.mesh.vertex_count(), 5);
+        let uv = back.uvs.unwrap();
+        let corner = |f: usize, k: usize| uv[back.mesh.faces()[f][k] as usize];
+        assert_eq!(corner(1, 1), DVec2::splat(0.5));
+    }
+
+    #[test]
+    fn node_transforms_and_truncation() {
+        let d = quad();
+        let mut text = Vec::new();
+        write_gltf(&mut text, &d.view()).unwrap();
+        let text = String::from_utf8(text)
+            .unwrap()
+            .replace(r#""mesh":0"#, r#""mesh":0,"translation":[0,0,2],"scale":[-1,1,1]"#);
+        let back = read(text.as_bytes(), None).unwrap();
+        assert_eq!(back.mesh.positions()[1], DVec3::new(-1.0, 0.0, 2.0));
+        assert_eq!(back.mesh.faces()[0], [0, 2, 1], "mirroring flips the winding");
+        let mut glb = Vec::new();
+        write_glb(&mut glb, &d.view()).unwrap();
+        for cut in [3, 11, 19, 40, glb.len() - 8] {
+            assert!(read(&glb[..cut], None).is_err(), "cut at {cut}");
+        }
+        assert!(matches!(check_glb_magic(b"{}"), Err(IoError::WrongMagic { .. })));
+    }
+}

@@ -1,0 +1,822 @@
+//! PLY (Stanford Polygon File Format), ascii and binary of both endians.
+//!
+//! Reading: the `vertex` element gives positions (`x y z`, any scalar type),
+//! normals (`nx ny nz`), texture coordinates (`u v`, `s t`, `texture_u
+//! texture_v`), colours (`red green blue [alpha]`; integer types are divided
+//! by 255, `ushort` by 65535) and, for every other scalar property, a named
+//! per-vertex field in [`MeshData::scalars`]. The `face` element gives
+//! polygons (`vertex_indices` or `vertex_index`, a list of any integer count
+//! and index type), fan-triangulated, and per-corner texture coordinates from
+//! a `texcoord` float list. Other elements and properties are skipped.
+//! Header counts are checked against the data size before anything is allocated.
+//!
+//! Writing: positions, normals and texture coordinates as `double` (or
+//! `float`, [`PlyOptions::double`]), colours as `uchar`, scalars as `double`,
+//! faces as `list uchar int vertex_indices` (plus `list uchar double
+//! texcoord` for corner UVs).
+
+use std::io::Write;
+
+use glam::{DVec2, DVec3};
+
+use crate::data::{tri_mesh, MeshData, MeshView, ReadReport};
+use crate::error::{excerpt, IoError, Location, Result};
+use crate::format::Format;
+use crate::text::{vertex_index, Scanner, TextWriter};
+
+/// How a PLY body is stored.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum PlyEncoding {
+    /// Text.
+    Ascii,
+    /// Binary, little-endian (what most tools write).
+    #[default]
+    BinaryLittleEndian,
+    /// Binary, big-endian.
+    BinaryBigEndian,
+}
+
+/// Options of [`write`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PlyOptions {
+    /// Body encoding.
+    pub encoding: PlyEncoding,
+    /// Positions, normals and texture coordinates as `double` (exact) rather
+    /// than `float`. Scalars are always `double`.
+    pub double: bool,
+}
+
+impl Default for PlyOptions {
+    fn default() -> Self {
+        Self { encoding: PlyEncoding::default(), double: true }
+    }
+}
+
+/// A PLY scalar type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(name: &[u8]) -> Option<Self> {
+        Some(match name {
+            b"char" | b"int8" => Self::I8,
+            b"uchar" | b"uint8" => Self::U8,
+            b"short" | b"int16" => Self::I16,
+            b"ushort" | b"uint16" => Self::U16,
+            b"int" | b"int32" => Self::I32,
+            b"uint" | b"uint32" => Self::U32,
+            b"float" | b"float32" => Self::F32,
+            b"double" | b"float64" => Self::F64,
+            _ => return None,
+        })
+    }
+
+    fn name(self) -> &'static str {
+        ["char", "uchar", "short", "ushort", "int", "uint", "float", "double"][self as usize]
+    }
+
+    fn size(self) -> usize {
+        [1, 1, 2, 2, 4, 4, 4, 8][self as usize]
+    }
+
+    fn is_float(self) -> bool {
+        matches!(self, Self::F32 | Self::F64)
+    }
+
+    /// The factor that maps a colour of this type to `[0, 1]`.
+    fn color_scale(self) -> f64 {
+        match self {
+            Self::F32 | Self::F64 => 1.0,
+            Self::U16 => 1.0 / 65535.0,
+            _ => 1.0 / 255.0,
+        }
+    }
+
+    /// Decodes a value from exactly `self.size()` bytes.
+    #[inline]
+    fn decode(self, b: &[u8], big: bool) -> f64 {
+        fn arr<const N: usize>(b: &[u8], big: bool) -> [u8; N] {
+            let mut a = [0u8; N];
+            a.copy_from_slice(&b[..N]);
+            if big {
+                a.reverse();
+            }
+            a
+        }
+        match self {
+            Self::I8 => f64::from(b[0] as i8),
+            Self::U8 => f64::from(b[0]),
+            Self::I16 => f64::from(i16::from_le_bytes(arr(b, big))),
+            Self::U16 => f64::from(u16::from_le_bytes(arr(b, big))),
+            Self::I32 => f64::from(i32::from_le_bytes(arr(b, big))),
+            Self::U32 => f64::from(u32::from_le_bytes(arr(b, big))),
+            Self::F32 => f64::from(f32::from_le_bytes(arr(b, big))),
+            Self::F64 => f64::from_le_bytes(arr(b, big)),
+        }
+    }
+
+    /// Appends `x` converted to this type.
+    #[inline]
+    fn encode(self, x: f64, big: bool, out: &mut Vec<u8>) {
+        let start = out.len();
+        match self {
+            Self::I8 => out.push(x as i8 as u8),
+            Self::U8 => out.push(x as u8),
+            Self::I16 => out.extend_from_slice(&(x as i16).to_le_bytes()),
+            Self::U16 => out.extend_from_slice(&(x as u16).to_le_bytes()),
+            Self::I32 => out.extend_from_slice(&(x as i32).to_le_bytes()),
+            Self::U32 => out.extend_from_slice(&(x as u32).to_le_bytes()),
+            Self::F32 => out.extend_from_slice(&(x as f32).to_le_bytes()),
+            Self::F64 => out.extend_from_slice(&x.to_le_bytes()),
+        }
+        if big {
+            out[start..].reverse();
+        }
+    }
+}
+
+/// A property: a scalar or a list (count type, item type).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Scalar(Scalar),
+    List(Scalar, Scalar),
+}
+
+#[derive(Debug, Clone)]
+struct Property {
+    name: String,
+    kind: Kind,
+}
+
+#[derive(Debug, Clone)]
+struct Element {
+    name: String,
+    count: usize,
+    props: Vec<Property>,
+}
+
+impl Element {
+    fn find(&self, names: &[&str]) -> Option<usize> {
+        self.props.iter().position(|p| names.contains(&p.name.as_str()))
+    }
+
+    /// Fewest bytes (binary) or words (ascii) one instance can take.
+    fn min_size(&self, binary: bool) -> u64 {
+        let each = |p: &Property| match (binary, p.kind) {
+            (false, _) => 1,
+            (true, Kind::Scalar(t) | Kind::List(t, _)) => t.size() as u64,
+        };
+        self.props.iter().map(each).sum()
+    }
+}
+
+struct Header {
+    encoding: PlyEncoding,
+    elements: Vec<Element>,
+    /// Byte offset of the body.
+    body: usize,
+    /// Line number of the body's first line.
+    body_line: usize,
+}
+
+fn loc() -> Location {
+    Location::new(Format::Ply)
+}
+
+/// Parses the header up to and including `end_header`.
+fn header(bytes: &[u8]) -> Result<Header> {
+    if !(bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n")) {
+        let at = Location::at_line(Format::Ply, 1);
+        return Err(IoError::WrongMagic { at, expected: "`ply` and a newline", found: excerpt(bytes) });
+    }
+    let mut s = Scanner::new(bytes, Format::Ply, None);
+    s.next_line();
+    let mut encoding = None;
+    let mut elements: Vec<Element> = Vec::new();
+    loop {
+        if s.is_eof() {
+            return Err(IoError::truncated(s.at(), "`end_header`"));
+        }
+        match s.word().unwrap_or_default() {
+            b"format" => encoding = Some(format_line(&mut s)?),
+            b"element" => {
+                let name = word_string(&mut s, "an element name")?;
+                let count = s.int("an element count")?;
+                let count = usize::try_from(count)
+                    .map_err(|_| IoError::count(s.at(), &name, count.into(), "counts cannot be negative"))?;
+                elements.push(Element { name, count, props: Vec::new() });
+            }
+            b"property" => {
+                let at = s.at();
+                let prop = property(&mut s)?;
+                let element = elements
+                    .last_mut()
+                    .ok_or_else(|| IoError::syntax(at, "`element` before `property`", b"property"))?;
+                element.props.push(prop);
+            }
+            b"end_header" => break,
+            b"comment" | b"obj_info" | b"" => {}
+            other => return Err(IoError::syntax(s.at(), "a PLY header keyword", other)),
+        }
+        s.next_line();
+    }
+    s.next_line();
+    let encoding = encoding.ok_or_else(|| IoError::syntax(s.at(), "a `format` line in the header", b"end_header"))?;
+    Ok(Header { encoding, elements, body: s.offset(), body_line: s.at().line.unwrap_or(1) })
+}
+
+fn format_line(s: &mut Scanner<'_>) -> Result<PlyEncoding> {
+    let encoding = match s.word().unwrap_or_default() {
+        b"ascii" => PlyEncoding::Ascii,
+        b"binary_little_endian" => PlyEncoding::BinaryLittleEndian,
+        b"binary_big_endian" => PlyEncoding::BinaryBigEndian,
+        other => return Err(IoError::syntax(s.at(), "ascii, binary_little_endian or binary_big_endian", other)),
+    };
+    match s.word() {
+        Some(b"1.0" | b"1") => Ok(encoding),
+        other => Err(IoError::unsupported(s.at(), format!("PLY version {}", excerpt(other.unwrap_or_default())))),
+    }
+}
+
+fn word_string(s: &mut Scanner<'_>, what: &str) -> Result<String> {
+    let word = s.word().ok_or_else(|| s.error(what))?;
+    String::from_utf8(word.to_vec()).map_err(|_| IoError::syntax(s.at(), what, word))
+}
+
+fn scalar_type(s: &Scanner<'_>, word: Option<&[u8]>) -> Result<Scalar> {
+    let word = word.unwrap_or_default();
+    Scalar::parse(word).ok_or_else(|| IoError::syntax(s.at(), "a PLY scalar type (uchar, int, float, ...)", word))
+}
+
+fn property(s: &mut Scanner<'_>) -> Result<Property> {
+    let first = s.word();
+    let kind = if first == Some(b"list") {
+        let word = s.word();
+        let count = scalar_type(s, word)?;
+        if count.is_float() {
+            return Err(IoError::syntax(s.at(), "an integer list count type", count.name().as_bytes()));
+        }
+        let word = s.word();
+        Kind::List(count, scalar_type(s, word)?)
+    } else {
+        Kind::Scalar(scalar_type(s, first)?)
+    };
+    Ok(Property { name: word_string(s, "a property name")?, kind })
+}
+
+/// Refuses element counts the data cannot hold, before allocating.
+fn check_counts(h: &Header, available: usize) -> Result<()> {
+    let binary = h.encoding != PlyEncoding::Ascii;
+    let mut need: u128 = 0;
+    for e in &h.elements {
+        // An ascii word takes at least two bytes with its separator.
+        let each = if binary { e.min_size(true) } else { 2 * e.min_size(false) };
+        need += e.count as u128 * u128::from(each);
+        if need > available as u128 + 1 {
+            let reason =
+                format!("{} bytes of data cannot hold {} elements of {each} bytes or more", available, e.count);
+            return Err(IoError::count(loc(), format!("`{}`", e.name), e.count as i128, reason));
+        }
+        if e.name == "vertex" && e.count >= u32::MAX as usize {
+            return Err(IoError::count(loc(), "vertex", e.count as i128, "more than 32-bit indices can address"));
+        }
+    }
+    Ok(())
+}
+
+/// Where property values come from: ascii words or binary bytes.
+trait Source {
+    /// The next value, converted to `f64`.
+    fn scalar(&mut self, t: Scalar) -> Result<f64>;
+    /// The next value, which must be a non-negative integer (list length).
+    fn count(&mut self, t: Scalar) -> Result<usize>;
+    /// Skips `n` values of type `t`.
+    fn skip(&mut self, t: Scalar, n: usize) -> Result<()>;
+    /// The current location, for errors.
+    fn at(&self) -> Location;
+
+    /// The next value as a (possibly negative) integer index.
+    #[inline]
+    fn index(&mut self, t: Scalar) -> Result<i64> {
+        let x = self.scalar(t)?;
+        if x.fract() != 0.0 || !x.is_finite() {
+            return Err(IoError::syntax(self.at(), "an integer vertex index", x.to_string().as_bytes()));
+        }
+        Ok(x as i64)
+    }
+
+    /// Skips one instance of every property.
+    fn skip_props(&mut self, props: &[Property]) -> Result<()> {
+        for p in props {
+            match p.kind {
+                Kind::Scalar(t) => self.skip(t, 1)?,
+                Kind::List(c, t) => {
+                    let n = self.count(c)?;
+                    self.skip(t, n)?
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+struct Ascii<'a>(Scanner<'a>);
+
+impl Source for Ascii<'_> {
+    #[inline]
+    fn scalar(&mut self, _: Scalar) -> Result<f64> {
+        if !self.0.skip_to_content() {
+            return Err(IoError::truncated(self.0.at(), "more property values"));
+        }
+        self.0.float("a number")
+    }
+
+    #[inline]
+    fn count(&mut self, _: Scalar) -> Result<usize> {
+        if !self.0.skip_to_content() {
+            return Err(IoError::truncated(self.0.at(), "a list length"));
+        }
+        let n = self.0.int("a list length")?;
+        usize::try_from(n).map_err(|_| IoError::syntax(self.0.at(), "a list length", n.to_string().as_bytes()))
+    }
+
+    fn skip(&mut self, t: Scalar, n: usize) -> Result<()> {
+        for _ in 0..n {
+            self.scalar(t)?;
+        }
+        Ok(())
+    }
+
+    fn at(&self) -> Location {
+        self.0.at()
+    }
+}
+
+struct Binary<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    big: bool,
+}
+
+impl Binary<'_> {
+    #[inline]
+    fn take(&mut self, len: usize) -> Result<&[u8]> {
+        let end = self.pos.checked_add(len).filter(|&e| e <= self.bytes.len());
+        let end = end.ok_or_else(|| IoError::truncated(loc(), format!("{len} more bytes at byte {}", self.pos)))?;
+        let taken = &self.bytes[self.pos..end];
+        self.pos = end;
+        Ok(taken)
+    }
+}
+
+impl Source for Binary<'_> {
+    #[inline]
+    fn scalar(&mut self, t: Scalar) -> Result<f64> {
+        let big = self.big;
+        Ok(t.decode(self.take(t.size())?, big))
+    }
+
+    #[inline]
+    fn count(&mut self, t: Scalar) -> Result<usize> {
+        let n = self.scalar(t)?;
+        if n < 0.0 {
+            return Err(IoError::syntax(loc(), "a list length", n.to_string().as_bytes()));
+        }
+        Ok(n as usize)
+    }
+
+    #[inline]
+    fn skip(&mut self, t: Scalar, n: usize) -> Result<()> {
+        self.take(n.saturating_mul(t.size())).map(|_| ())
+    }
+
+    fn at(&self) -> Location {
+        loc()
+    }
+}
+
+/// Reads a PLY file (ascii or binary) from memory. Cost O(size).
+pub fn read(bytes: &[u8]) -> Result<MeshData> {
+    let h = header(bytes)?;
+    let body = bytes.get(h.body..).unwrap_or_default();
+    check_counts(&h, body.len())?;
+    match h.encoding {
+        PlyEncoding::Ascii => {
+            read_body(&h, Ascii(Scanner::new(bytes, Format::Ply, None).starting_at(h.body, h.body_line)))
+        }
+        encoding => read_body(&h, Binary { bytes: body, pos: 0, big: encoding == PlyEncoding::BinaryBigEndian }),
+    }
+}
+
+fn read_body(h: &Header, mut src: impl Source) -> Result<MeshData> {
+    let nv = h.elements.iter().find(|e| e.name == "vertex").map_or(0, |e| e.count);
+    let mut vertices = None;
+    let mut faces = None;
+    let mut report = ReadReport::default();
+    for e in &h.elements {
+        match e.name.as_str() {
+            "vertex" if vertices.is_none() => vertices = Some(Vertices::read(e, &mut src)?),
+            "face" if faces.is_none() => faces = Some(Faces::read(e, nv, &mut src, &mut report)?),
+            _ => {
+                if !e.props.is_empty() {
+                    for _ in 0..e.count {
+                        src.skip_props(&e.props)?;
+                    }
+                }
+                report.note(format!("element `{}` ({} items) ignored", e.name, e.count));
+            }
+        }
+    }
+    let v = vertices.unwrap_or_default();
+    let f = faces.unwrap_or_default();
+    let mut data = MeshData::new(tri_mesh(v.positions, f.faces, loc())?);
+    data.normals = v.normals;
+    data.uvs = v.uvs;
+    data.colors = v.colors;
+    data.scalars = v.scalars;
+    data.corner_uvs = f.corner_uvs;
+    data.report = report;
+    Ok(data)
+}
+
+const NORMALS: [&[&str]; 3] = [&["nx", "normal_x"], &["ny", "normal_y"], &["nz", "normal_z"]];
+const UVS: [&[&str]; 2] = [&["u", "s", "texture_u", "texture_s"], &["v", "t", "texture_v", "texture_t"]];
+const COLORS: [&[&str]; 4] =
+    [&["red", "diffuse_red"], &["green", "diffuse_green"], &["blue", "diffuse_blue"], &["alpha", "diffuse_alpha"]];
+
+#[derive(Default)]
+struct Vertices {
+    positions: Vec<DVec3>,
+    normals: Option<Vec<DVec3>>,
+    uvs: Option<Vec<DVec2>>,
+    colors: Option<Vec<[f32; 4]>>,
+    scalars: Vec<(String, Vec<f64>)>,
+}
+
+impl Vertices {
+    fn read(e: &Element, src: &mut impl Source) -> Result<Self> {
+        let all = |names: &[&[&str]]| names.iter().map(|n| e.find(n)).collect::<Option<Vec<usize>>>();
+        let xyz = all(&[&["x"], &["y"], &["z"]]).ok_or_else(|| {
+            IoError::syntax(
+                loc(),
+                "`x`, `y` and `z` properties in element `vertex`",
+                e.props.first().map_or(&b""[..], |p| p.name.as_bytes()),
+            )
+        })?;
+        let normal = all(&NORMALS);
+        let uv = all(&UVS);
+        let color = all(&COLORS[..3]).map(|mut c| {
+            c.push(e.find(COLORS[3]).unwrap_or(usize::MAX));
+            c
+        });
+        let mut known = xyz.clone();
+        known.extend(normal.iter().chain(&uv).chain(&color).flatten());
+        let scalar_props: Vec<usize> =
+            (0..e.props.len()).filter(|i| !known.contains(i) && matches!(e.props[*i].kind, Kind::Scalar(_))).collect();
+        let color_scale: Vec<f64> =
+            e.props.iter().map(|p| if let Kind::Scalar(t) = p.kind { t.color_scale() } else { 1.0 }).collect();
+
+        let n = e.count;
+        let mut out = Vertices {
+            positions: Vec::with_capacity(n),
+            normals: normal.as_ref().map(|_| Vec::with_capacity(n)),
+            uvs: uv.as_ref().map(|_| Vec::with_capacity(n)),
+            colors: color.as_ref().map(|_| Vec::with_capacity(n)),
+            scalars: scalar_props.iter().map(|&i| (e.props[i].name.clone(), Vec::with_capacity(n))).collect(),
+        };
+        let mut row = vec![0.0; e.props.len() + 1];
+        let alpha_slot = e.props.len();
+        row[alpha_slot] = 1.0;
+        for i in 0..n {
+            for (slot, p) in e.props.iter().enumerate() {
+                match p.kind {
+                    Kind::Scalar(t) => row[slot] = src.scalar(t)?,
+                    Kind::List(c, t) => {
+                        let len = src.count(c)?;
+                        src.skip(t, len)?
+                    }
+                }
+            }
+            let p = DVec3::new(row[xyz[0]], row[xyz[1]], row[xyz[2]]);
+            if !p.is_finite() {
+                return Err(IoError::NonFinite { at: src.at(), vertex: i });
+            }
+            out.positions.push(p);
+            if let (Some(s), Some(list)) = (&normal, &mut out.normals) {
+                list.push(DVec3::new(row[s[0]], row[s[1]], row[s[2]]));
+            }
+            if let (Some(s), Some(list)) = (&uv, &mut out.uvs) {
+                list.push(DVec2::new(row[s[0]], row[s[1]]));
+            }
+            if let (Some(s), Some(list)) = (&color, &mut out.colors) {
+                let slot = |k: usize| s[k].min(alpha_slot);
+                list.push(
+                    [0, 1, 2, 3].map(|k| (row[slot(k)] * color_scale.get(slot(k)).copied().unwrap_or(1.0)) as f32),
+                );
+            }
+            for ((_, list), &slot) in out.scalars.iter_mut().zip(&scalar_props) {
+                list.push(row[slot]);
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[derive(Default)]
+struct Faces {
+    faces: Vec<[u32; 3]>,
+    corner_uvs: Option<Vec<[DVec2; 3]>>,
+}
+
+impl Faces {
+    fn read(e: &Element, nv: usize, src: &mut impl Source, report: &mut ReadReport) -> Result<Self> {
+        let indices =
+            e.find(&["vertex_indices", "vertex_index"]).filter(|&i| matches!(e.props[i].kind, Kind::List(..)));
+        let Some(indices) = indices else {
+            return Err(IoError::syntax(loc(), "a `vertex_indices` list in element `face`", b""));
+        };
+        let texcoord = e.find(&["texcoord"]).filter(|&i| matches!(e.props[i].kind, Kind::List(..)));
+        let mut out = Faces { faces: Vec::with_capacity(e.count), corner_uvs: texcoord.map(|_| Vec::new()) };
+        let (mut polygon, mut uv) = (Vec::new(), Vec::new());
+        for f in 0..e.count {
+            for (k, p) in e.props.iter().enumerate() {
+                match p.kind {
+                    Kind::List(c, t) if k == indices => {
+                        let n = src.count(c)?;
+                        polygon.clear();
+                        for _ in 0..n {
+                            let i = src.index(t)?;
+                            polygon.push(vertex_index(|| src.at(), f, i, nv)?);
+                        }
+                    }
+                    Kind::List(c, t) if Some(k) == texcoord => {
+                        let n = src.count(c)?;
+                        uv.clear();
+                        for _ in 0..n {
+                            uv.push(src.scalar(t)?);
+                        }
+                    }
+                    _ => src.skip_props(std::slice::from_ref(p))?,
+                }
+            }
+            if texcoord.is_some() && uv.len() != 2 * polygon.len() && out.corner_uvs.take().is_some() {
+                report.note("texture coordinates dropped: a face's `texcoord` list does not match its vertices");
+            }
+            let Faces { faces, corner_uvs } = &mut out;
+            report.triangulate(&polygon, |corners, tri| {
+                faces.push(tri);
+                if let Some(list) = corner_uvs {
+                    list.push(corners.map(|c| DVec2::new(uv[2 * c], uv[2 * c + 1])));
+                }
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// Writes a PLY file. Cost O(size).
+///
+/// Scalar names must be single words of printable ascii that do not collide
+/// with the properties this crate writes (`x`, `nx`, `red`, ...), else
+/// [`IoError::Unsupported`].
+pub fn write<W: Write>(out: W, view: &MeshView<'_>, options: &PlyOptions) -> Result<()> {
+    view.check()?;
+    let layout = Layout::new(view, options)?;
+    let mut out = out;
+    let mut head = TextWriter::new(&mut out);
+    layout.header(view, options.encoding, &mut head)?;
+    head.finish()?;
+    match options.encoding {
+        PlyEncoding::Ascii => layout.body(view, AsciiSink { w: TextWriter::new(out), first: true }),
+        encoding => layout.body(
+            view,
+            BinarySink { out, buf: Vec::with_capacity(1 << 16), big: encoding == PlyEncoding::BinaryBigEndian },
+        ),
+    }
+}
+
+/// The properties written for a view.
+struct Layout {
+    real: Scalar,
+    index: Scalar,
+    vertex: Vec<(String, Scalar)>,
+}
+
+const RESERVED: [&str; 16] =
+    ["x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t", "texture_u", "texture_v", "red", "green", "blue", "alpha"];
+
+impl Layout {
+    fn new(view: &MeshView<'_>, options: &PlyOptions) -> Result<Self> {
+        let real = if options.double { Scalar::F64 } else { Scalar::F32 };
+        let index = if view.mesh.vertex_count() <= i32::MAX as usize { Scalar::I32 } else { Scalar::U32 };
+        let mut vertex: Vec<(String, Scalar)> = ["x", "y", "z"].map(|n| (n.to_owned(), real)).to_vec();
+        let mut add = |on: bool, names: &[&str], t: Scalar| {
+            if on {
+                vertex.extend(names.iter().map(|n| (n.to_string(), t)));
+            }
+        };
+        add(view.normals.is_some(), &["nx", "ny", "nz"], real);
+        add(view.uvs.is_some() && view.corner_uvs.is_none(), &["texture_u", "texture_v"], real);
+        add(view.colors.is_some(), &["red", "green", "blue", "alpha"], Scalar::U8);
+        for (name, _) in &view.scalars {
+            let valid = !name.is_empty() && name.bytes().all(|b| b.is_ascii_graphic());
+            if !valid || RESERVED.contains(name) {
+                let what = format!("scalar name `{name}` as a PLY property (a word, not a standard property name)");
+                return Err(IoError::unsupported(loc(), what));
+            }
+            vertex.push((name.to_string(), Scalar::F64));
+        }
+        Ok(Self { real, index, vertex })
+    }
+
+    fn header<W: Write>(&self, view: &MeshView<'_>, encoding: PlyEncoding, w: &mut TextWriter<W>) -> Result<()> {
+        let format = ["ascii", "binary_little_endian", "binary_big_endian"][encoding as usize];
+        w.str("ply").line()?;
+        w.str("format ").str(format).str(" 1.0").line()?;
+        w.str("comment written by mesh-io").line()?;
+        w.str("element vertex ").uint(view.mesh.vertex_count() as u64).line()?;
+        for (name, t) in &self.vertex {
+            w.str("property ").str(t.name()).str(" ").str(name).line()?;
+        }
+        w.str("element face ").uint(view.mesh.face_count() as u64).line()?;
+        w.str("property list uchar ").str(self.index.name()).str(" vertex_indices").line()?;
+        if view.corner_uvs.is_some() {
+            w.str("property list uchar ").str(self.real.name()).str(" texcoord").line()?;
+        }
+        w.str("end_header").line()
+    }
+
+    fn body(&self, view: &MeshView<'_>, mut sink: impl Sink) -> Result<()> {
+        let mesh = view.mesh;
+        let uvs = view.uvs.filter(|_| view.corner_uvs.is_none());
+        for (i, p) in mesh.positions().iter().enumerate() {
+            let real = self.real;
+            sink.values(real, &p.to_array());
+            if let Some(n) = view.normals {
+                sink.values(real, &n[i].to_array());
+            }
+            if let Some(uv) = uvs {
+                sink.values(real, &uv[i].to_array());
+            }
+            if let Some(c) = view.colors {
+                sink.values(Scalar::U8, &c[i].map(|x| f64::from(crate::off::color_byte(x))));
+            }
+            for (_, values) in &view.scalars {
+                sink.values(Scalar::F64, &[values[i]]);
+            }
+            sink.end()?;
+        }
+        for (f, tri) in mesh.faces().iter().enumerate() {
+            sink.values(Scalar::U8, &[3.0]);
+            sink.values(self.index, &tri.map(f64::from));
+            if let Some(corner) = view.corner_uvs {
+                sink.values(Scalar::U8, &[6.0]);
+                sink.values(self.real, &corner[f].map(|uv| uv.to_array()).concat());
+            }
+            sink.end()?;
+        }
+        sink.finish()
+    }
+}
+
+/// Where the writer puts values: ascii words or binary bytes.
+trait Sink {
+    /// Appends values of type `t`.
+    fn values(&mut self, t: Scalar, xs: &[f64]);
+    /// Ends an element instance.
+    fn end(&mut self) -> Result<()>;
+    /// Writes out what is left.
+    fn finish(self) -> Result<()>;
+}
+
+struct AsciiSink<W: Write> {
+    w: TextWriter<W>,
+    first: bool,
+}
+
+impl<W: Write> Sink for AsciiSink<W> {
+    #[inline]
+    fn values(&mut self, t: Scalar, xs: &[f64]) {
+        for &x in xs {
+            if !self.first {
+                self.w.str(" ");
+            }
+            self.first = false;
+            match t {
+                Scalar::F64 => self.w.float(x),
+                Scalar::F32 => self.w.float32(x as f32),
+                _ => self.w.uint(x as u64),
+            };
+        }
+    }
+
+    #[inline]
+    fn end(&mut self) -> Result<()> {
+        self.first = true;
+        self.w.line()
+    }
+
+    fn finish(self) -> Result<()> {
+        self.w.finish()
+    }
+}
+
+struct BinarySink<W: Write> {
+    out: W,
+    buf: Vec<u8>,
+    big: bool,
+}
+
+impl<W: Write> Sink for BinarySink<W> {
+    #[inline]
+    fn values(&mut self, t: Scalar, xs: &[f64]) {
+        for &x in xs {
+            t.encode(x, self.big, &mut self.buf);
+        }
+    }
+
+    #[inline]
+    fn end(&mut self) -> Result<()> {
+        if self.buf.len() >= 1 << 16 {
+            self.out.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> Result<()> {
+        self.out.write_all(&self.buf)?;
+        self.out.flush()?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ASCII: &[u8] = b"ply\nformat ascii 1.0\ncomment hi\nelement vertex 4\nproperty float x\nproperty float y\n\
+property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nproperty double quality\n\
+element face 2\nproperty list uchar int vertex_indices\nproperty uchar flags\nelement edge 1\n\
+property int vertex1\nproperty int vertex2\nend_header\n0 0 0 255 0 0 0.5\n1 0 0 0 255 0 1.5\n1 1 0 0 0 255 2.5\n\
+0 1 0 0 0 0 3.5\n4 0 1 2 3 7\n3 0 2 2 7\n0 1\n";
+
+    #[test]
+    fn reads_ascii_with_colors_scalars_and_other_elements() {
+        let d = read(ASCII).unwrap();
+        assert_eq!((d.mesh.vertex_count(), d.mesh.face_count()), (4, 2));
+        assert_eq!((d.report.polygons_triangulated, d.report.faces_dropped), (1, 1));
+        assert_eq!(d.colors.as_ref().unwrap()[1], [0.0, 1.0, 0.0, 1.0]);
+        assert_eq!(d.scalar("quality"), Some(&[0.5, 1.5, 2.5, 3.5][..]));
+        assert_eq!(d.report.notes.len(), 1);
+    }
+
+    #[test]
+    fn typed_errors() {
+        let e = |src: &[u8]| read(src).unwrap_err();
+        assert!(matches!(e(b"OFF\n"), IoError::WrongMagic { .. }));
+        assert!(matches!(e(b"ply\nformat ascii 1.0\n"), IoError::Truncated { .. }));
+        let hostile = b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n\
+property float y\nproperty float z\nend_header\n";
+        assert!(matches!(e(hostile), IoError::Count { .. }), "{}", e(hostile));
+        let negative = b"ply\nformat ascii 1.0\nelement vertex -3\nend_header\n";
+        assert!(matches!(e(negative), IoError::Count { .. }));
+        let text = String::from_utf8_lossy(ASCII);
+        let bad_index = text.replace("4 0 1 2 3 7", "4 0 1 2 9 7");
+        let err = e(bad_index.as_bytes());
+        assert!(matches!(err, IoError::Index { index: 9, .. }), "{err}");
+        assert_eq!(err.location().and_then(|l| l.line), Some(23));
+        assert!(matches!(
+            e(text.replace("1 1 0 0 0 255", "1 nan 0 0 0 255").as_bytes()),
+            IoError::NonFinite { vertex: 2, .. }
+        ));
+        assert!(matches!(e(&ASCII[..ASCII.len() - 8]), IoError::Truncated { .. }));
+        assert!(matches!(
+            e(text.replace("uchar int", "uchar float").replace("3 0 2 2", "3 0 2 2.5").as_bytes()),
+            IoError::Syntax { .. }
+        ));
+    }
+
+    #[test]
+    fn binary_both_endians_round_trip() {
+        let d = read(ASCII).unwrap();
+        for encoding in [PlyEncoding::BinaryLittleEndian, PlyEncoding::BinaryBigEndian, PlyEncoding::Ascii] {
+            let mut out = Vec::new();
+            write(&mut out, &d.view(), &PlyOptions { encoding, double: true }).unwrap();
+            let back = read(&out).unwrap();
+            assert_eq!(back.mesh, d.mesh);
+            assert_eq!(back.colors, d.colors);
+            assert_eq!(back.scalars, d.scalars);
+            assert!(matches!(read(&out[..out.len() - 3]), Err(IoError::Truncated { .. })));
+        }
+    }
+}
