@@ -1,0 +1,374 @@
+//! Detection of subdivision connectivity: reverse 4-to-1 splitting
+//! (after Taubin, "Detecting and reconstructing subdivision connectivity",
+//! The Visual Computer 2002).
+//!
+//! A mesh split once from K^j has its faces in groups of four: a *central*
+//! face of three odd vertices and three *corner* faces, each with one even
+//! vertex (a vertex of K^j) and two odd ones. An interior odd vertex has
+//! valence 6 and a boundary one valence 4, so any other vertex must be even.
+//! Starting from a face next to such a vertex (or trying the four possible
+//! roles of a seed face when the component is fully regular), the grouping
+//! grows face by face: the faces across a central face are its corners, and
+//! the face across a corner's even edge is a corner of the next group. Any
+//! conflict (a face or vertex given two roles, an odd vertex on two coarse
+//! edges, a non-manifold coarse mesh) rejects the hypothesis. Each success
+//! yields K^j; the process repeats until it fails, which gives the number of
+//! levels J. Cost O(F) per level and hypothesis, at most four hypotheses per
+//! connected component.
+
+use mesh_core::{Connectivity, HalfedgeId, MeshError, TriMesh, VertexId, VertexKind};
+
+use crate::error::{Result, WaveletError};
+use crate::hierarchy::Hierarchy;
+
+/// Options of [`detect`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DetectOptions {
+    /// Stop after reversing this many levels (the base mesh is then the
+    /// level reached). Default: as many as the mesh has.
+    pub max_levels: usize,
+}
+
+impl Default for DetectOptions {
+    fn default() -> Self {
+        Self { max_levels: 32 }
+    }
+}
+
+/// Finds the hierarchy K^0 ⊂ ... ⊂ K^J = `mesh` by reversing 4-to-1 splits as
+/// often as possible (at most `max_levels`). The hierarchy remembers the
+/// input index of every vertex ([`Hierarchy::to_input`]); its finest faces
+/// are the input faces, in order.
+///
+/// Errors: [`MeshError::Empty`], [`MeshError::NonManifold`], and
+/// [`WaveletError::NoSubdivisionConnectivity`] when not even one split can
+/// be reversed (or a vertex is referenced by no face), with the reason.
+/// Cost O(F) per level.
+pub fn detect(mesh: &TriMesh, options: &DetectOptions) -> Result<Hierarchy> {
+    if mesh.face_count() == 0 {
+        return Err(MeshError::Empty.into());
+    }
+    let conn = mesh.manifold_connectivity()?;
+    if let Some(v) = conn.vertex_kinds().iter().position(|k| *k == VertexKind::Isolated) {
+        return Err(WaveletError::NoSubdivisionConnectivity {
+            reason: format!("vertex {} is referenced by no face", VertexId::new(v)),
+        });
+    }
+    let mut steps: Vec<Reversal> = Vec::new();
+    let mut failure = String::new();
+    while steps.len() < options.max_levels {
+        let result = match steps.last() {
+            None => reverse(conn, mesh.faces()),
+            Some(r) => reverse(&Connectivity::new(r.evens.len(), &r.coarse_faces), &r.coarse_faces),
+        };
+        match result {
+            Ok(r) => steps.push(r),
+            Err(reason) => {
+                failure = reason;
+                break;
+            }
+        }
+    }
+    if steps.is_empty() {
+        return Err(WaveletError::NoSubdivisionConnectivity { reason: failure });
+    }
+    assemble(mesh, &steps)
+}
+
+/// One reversed 4-to-1 split: the coarse mesh and how the fine vertices
+/// relate to it.
+struct Reversal {
+    /// Fine index of each coarse vertex, increasing.
+    evens: Vec<u32>,
+    /// Coarse index of each fine vertex, `u32::MAX` for odd vertices.
+    coarse_of: Vec<u32>,
+    /// Parent edge (coarse indices) of each fine vertex; unused for evens.
+    parent: Vec<[u32; 2]>,
+    /// Faces of the coarse mesh (coarse indices).
+    coarse_faces: Vec<[u32; 3]>,
+}
+
+const UNSET: u32 = u32::MAX;
+const EVEN: u8 = 1;
+const ODD: u8 = 2;
+
+/// The grouping of faces into quadruples, grown from seeds.
+struct Grouping<'a> {
+    conn: &'a Connectivity,
+    /// Per face: `4 q + k` for corner k of group q, `4 q + 3` for its centre.
+    role: Vec<u32>,
+    label: Vec<u8>,
+    /// Per group: the central face and its three even vertices, the one
+    /// across central half-edge k at position k.
+    groups: Vec<(u32, [u32; 3])>,
+    touched_faces: Vec<u32>,
+    touched_vertices: Vec<u32>,
+    queue: Vec<u32>,
+}
+
+impl<'a> Grouping<'a> {
+    fn new(conn: &'a Connectivity) -> Self {
+        Self {
+            conn,
+            role: vec![UNSET; conn.face_count()],
+            label: vec![0; conn.vertex_count()],
+            groups: Vec::new(),
+            touched_faces: Vec::new(),
+            touched_vertices: Vec::new(),
+            queue: Vec::new(),
+        }
+    }
+
+    fn set_label(&mut self, v: VertexId, label: u8) -> Result<(), String> {
+        match self.label[v.idx()] {
+            0 => {
+                self.label[v.idx()] = label;
+                self.touched_vertices.push(v.0);
+                Ok(())
+            }
+            l if l == label => Ok(()),
+            _ => Err(format!("vertex {v} would be both a vertex of the coarse mesh and an edge midpoint")),
+        }
+    }
+
+    fn set_role(&mut self, f: u32, role: u32) -> Result<(), String> {
+        if self.role[f as usize] != UNSET {
+            return Err(format!("face f{f} would belong to two groups of four"));
+        }
+        self.role[f as usize] = role;
+        self.touched_faces.push(f);
+        Ok(())
+    }
+
+    /// Grows the grouping from `seed` taken as a central face. On failure
+    /// every assignment of this attempt is undone.
+    fn grow(&mut self, seed: u32) -> Result<usize, String> {
+        self.touched_faces.clear();
+        self.touched_vertices.clear();
+        let groups_before = self.groups.len();
+        match self.grow_inner(seed) {
+            Ok(()) => Ok(self.touched_faces.len()),
+            Err(reason) => {
+                self.rollback(groups_before);
+                Err(reason)
+            }
+        }
+    }
+
+    /// Undoes every assignment since the last call to `grow` started.
+    fn rollback(&mut self, groups_before: usize) {
+        for &f in &self.touched_faces {
+            self.role[f as usize] = UNSET;
+        }
+        for &v in &self.touched_vertices {
+            self.label[v as usize] = 0;
+        }
+        self.groups.truncate(groups_before);
+    }
+
+    fn grow_inner(&mut self, seed: u32) -> Result<(), String> {
+        let conn = self.conn;
+        self.queue.clear();
+        self.queue.push(seed);
+        while let Some(t) = self.queue.pop() {
+            match self.role[t as usize] {
+                UNSET => {}
+                r if r % 4 == 3 => continue,
+                _ => return Err(format!("face f{t} would be both a corner and a central face")),
+            }
+            let q = self.groups.len() as u32;
+            self.set_role(t, 4 * q + 3)?;
+            let mut evens = [0u32; 3];
+            for k in 0..3 {
+                let h = HalfedgeId::of_corner(mesh_core::FaceId(t), k);
+                self.set_label(conn.origin(h), ODD)?;
+                let tw = conn.twin(h).ok_or_else(|| format!("central face f{t} would touch the boundary"))?;
+                self.set_role(tw.face().0, 4 * q + k as u32)?;
+                let e = conn.opposite_vertex(tw);
+                self.set_label(e, EVEN)?;
+                evens[k] = e.0;
+                // The faces across the two edges at the even vertex are corners
+                // of neighbouring groups; their central faces are across their
+                // edge that avoids the even vertex.
+                for g in [tw.next(), tw.prev()] {
+                    if let Some(g2) = conn.twin(g) {
+                        let inner = if conn.origin(g2) == e { g2.next() } else { g2.prev() };
+                        let ct = conn.twin(inner).ok_or_else(|| {
+                            format!("corner face {} would touch the boundary with an inner edge", g2.face())
+                        })?;
+                        if self.role[ct.face().idx()] == UNSET {
+                            self.queue.push(ct.face().0);
+                        }
+                    }
+                }
+            }
+            self.groups.push((t, evens));
+        }
+        Ok(())
+    }
+}
+
+/// `true` for a vertex that cannot be an edge midpoint of a 4-to-1 split
+/// (interior valence other than 6, boundary valence other than 4).
+fn must_be_even(conn: &Connectivity, v: VertexId) -> bool {
+    match conn.vertex_kind(v) {
+        VertexKind::Interior => conn.valence(v) != 6,
+        VertexKind::Boundary => conn.valence(v) != 4,
+        _ => true,
+    }
+}
+
+/// Reverses one 4-to-1 split of the manifold mesh `faces`, or says why not.
+fn reverse(conn: &Connectivity, faces: &[[u32; 3]]) -> Result<Reversal, String> {
+    let nf = faces.len();
+    if nf % 4 != 0 {
+        return Err(format!("{nf} faces is not a multiple of 4"));
+    }
+    if !conn.is_manifold() {
+        return Err("the coarser mesh would not be manifold".into());
+    }
+    let comps = conn.components();
+    let mut forced = vec![u32::MAX; comps.count];
+    let mut comp_faces = vec![0usize; comps.count];
+    for v in 0..conn.vertex_count() {
+        let c = comps.vertex_component[v];
+        if c != u32::MAX && forced[c as usize] == u32::MAX && must_be_even(conn, VertexId::new(v)) {
+            forced[c as usize] = v as u32;
+        }
+    }
+    for &c in &comps.face_component {
+        comp_faces[c as usize] += 1;
+    }
+    let mut grouping = Grouping::new(conn);
+    for f in 0..nf as u32 {
+        if grouping.role[f as usize] != UNSET {
+            continue;
+        }
+        let c = comps.face_component[f as usize] as usize;
+        let hypotheses: Vec<u32> = match forced[c] {
+            u32::MAX => {
+                let mut h = vec![f];
+                h.extend(
+                    (0..3)
+                        .filter_map(|k| conn.twin(HalfedgeId::of_corner(mesh_core::FaceId(f), k)))
+                        .map(|t| t.face().0),
+                );
+                h
+            }
+            v => {
+                // v is even: its first face is a corner; the centre is across
+                // the edge opposite v.
+                let h = conn.outgoing(VertexId(v))[0];
+                match conn.twin(h.next()) {
+                    Some(t) => vec![t.face().0],
+                    None => return Err(format!("vertex v{v} must be even but its face has a boundary inner edge")),
+                }
+            }
+        };
+        let mut last = String::from("no hypothesis");
+        let mut ok = false;
+        for seed in hypotheses {
+            let groups_before = grouping.groups.len();
+            match grouping.grow(seed) {
+                Ok(count) if count == comp_faces[c] => {
+                    ok = true;
+                    break;
+                }
+                Ok(count) => {
+                    grouping.rollback(groups_before);
+                    last = format!("the groups of four cover {count} of {} faces", comp_faces[c]);
+                }
+                Err(reason) => last = reason,
+            }
+        }
+        if !ok {
+            return Err(last);
+        }
+    }
+    build_reversal(conn, grouping)
+}
+
+/// The coarse mesh of a complete grouping, after the global checks.
+fn build_reversal(conn: &Connectivity, g: Grouping<'_>) -> Result<Reversal, String> {
+    let n = conn.vertex_count();
+    let mut coarse_of = vec![UNSET; n];
+    let mut evens = Vec::new();
+    for v in 0..n {
+        if g.label[v] == EVEN {
+            coarse_of[v] = evens.len() as u32;
+            evens.push(v as u32);
+        }
+    }
+    let mut parent = vec![[UNSET; 2]; n];
+    let mut coarse_faces = Vec::with_capacity(g.groups.len());
+    for &(t, [b, c, a]) in &g.groups {
+        // Central half-edge k runs m_k -> m_{k+1}; the even across it lies
+        // between them, so m_0 splits (a, b), m_1 (b, c), m_2 (c, a).
+        let [ca, cb, cc] = [a, b, c].map(|v| coarse_of[v as usize]);
+        if ca == cb || cb == cc || cc == ca {
+            return Err("a coarse triangle would repeat a vertex".into());
+        }
+        coarse_faces.push([ca, cb, cc]);
+        for (k, edge) in [[ca, cb], [cb, cc], [cc, ca]].into_iter().enumerate() {
+            let m = conn.origin(HalfedgeId::of_corner(mesh_core::FaceId(t), k)).idx();
+            let key = [edge[0].min(edge[1]), edge[0].max(edge[1])];
+            match parent[m] {
+                [UNSET, _] => parent[m] = key,
+                p if p == key => {}
+                _ => return Err(format!("vertex v{m} would split two different coarse edges")),
+            }
+        }
+    }
+    let coarse = Connectivity::new(evens.len(), &coarse_faces);
+    if !coarse.is_manifold() {
+        return Err(format!("the coarser mesh would not be manifold: {}", coarse.non_manifold_report()));
+    }
+    let odd = n - evens.len();
+    if coarse.edge_count() != odd {
+        return Err(format!("{odd} edge midpoints for {} coarse edges", coarse.edge_count()));
+    }
+    // Distinct parents: sort the parent keys of odd vertices and look for repeats.
+    let mut keys: Vec<[u32; 2]> = (0..n).filter(|&v| coarse_of[v] == UNSET).map(|v| parent[v]).collect();
+    keys.sort_unstable();
+    if keys.windows(2).any(|w| w[0] == w[1]) || keys.first().is_some_and(|k| k[0] == UNSET) {
+        return Err("two edge midpoints would split the same coarse edge".into());
+    }
+    Ok(Reversal { evens, coarse_of, parent, coarse_faces })
+}
+
+/// Hierarchical numbering from the reversals (finest first).
+fn assemble(mesh: &TriMesh, steps: &[Reversal]) -> Result<Hierarchy> {
+    let levels = steps.len();
+    let base = &steps[levels - 1];
+    let n0 = base.evens.len();
+    let mut counts = vec![n0];
+    let mut faces = vec![base.coarse_faces.clone()];
+    let mut parents = Vec::with_capacity(levels);
+    // hier_to_level[h] = index of hierarchical vertex h in the numbering of the
+    // current level's reversal; level_to_hier its inverse.
+    let mut hier_to_level: Vec<u32> = (0..n0 as u32).collect();
+    let mut level_to_hier: Vec<u32> = hier_to_level.clone();
+    for j in 0..levels {
+        let r = &steps[levels - 1 - j];
+        let fine_n = r.coarse_of.len();
+        let mut next: Vec<u32> = hier_to_level.iter().map(|&c| r.evens[c as usize]).collect();
+        let mut level_parents = Vec::with_capacity(fine_n - next.len());
+        for v in 0..fine_n {
+            if r.coarse_of[v] == UNSET {
+                next.push(v as u32);
+                level_parents.push(r.parent[v].map(|c| level_to_hier[c as usize]));
+            }
+        }
+        let mut inverse = vec![0u32; fine_n];
+        for (h, &v) in next.iter().enumerate() {
+            inverse[v as usize] = h as u32;
+        }
+        let fine_faces: &[[u32; 3]] = if j + 1 == levels { mesh.faces() } else { &steps[levels - 2 - j].coarse_faces };
+        faces.push(fine_faces.iter().map(|f| f.map(|v| inverse[v as usize])).collect());
+        parents.push(level_parents);
+        counts.push(fine_n);
+        hier_to_level = next;
+        level_to_hier = inverse;
+    }
+    Hierarchy::new(counts, faces, parents, Some(hier_to_level))
+}

@@ -1,0 +1,161 @@
+//! Update weights of the lifted wavelet: a local least-squares
+//! orthogonalisation under the inner product of eq. 2.36.
+//!
+//! The lifted wavelet of the odd vertex m on edge (a, b) of K^j is
+//! `psi_m = phi^{j+1}_m - sum_{k in S} s_k phi^j_k` over the diamond
+//! `S = {a, b, c, d}` (c, d opposite the edge; one of them on the boundary).
+//! The weights minimise `sum_i <psi_m, phi^j_i>^2` over every coarse hat
+//! function `phi^j_i` the wavelet can overlap (the closed 1-rings of S): the
+//! normal equations `(M^T M) s = M^T g` with `M_ik = <phi^j_k, phi^j_i>` and
+//! `g_i = <phi^{j+1}_m, phi^j_i>`.
+//!
+//! With the inner product of eq. 2.36 every base face has unit area, so a
+//! face of K^j has area `4^-j` and all inner products are combinatorial. In
+//! units of the area of a face of K^{j+1}:
+//! `<phi^j_k, phi^j_k> = 4 F_k / 6`, `<phi^j_k, phi^j_i> = 4 F_ki / 12`
+//! (F = number of faces at a vertex or an edge), and, refining
+//! `phi^j_a = phi^{j+1}_a + 1/2 sum_odd phi^{j+1}_o`,
+//! `g_a = g_b = 5 F_ab / 12`, `g_c = g_d = 1 / 6`, zero elsewhere.
+//! These are exact for the hat functions of the midpoint scheme; for Loop
+//! and butterfly the same weights are used (the hat functions then
+//! approximate their smooth scaling functions).
+
+use mesh_core::{Connectivity, VertexId};
+
+use crate::rules::ring_with_face_counts;
+
+/// Scratch space for [`update_weights`], reused across odd vertices.
+#[derive(Default)]
+pub(crate) struct UpdateScratch {
+    slots: Vec<u32>,
+    rows: Vec<[f64; 4]>,
+    ring: Vec<(u32, u8)>,
+}
+
+impl UpdateScratch {
+    fn slot(&mut self, v: u32) -> usize {
+        match self.slots.iter().position(|&s| s == v) {
+            Some(p) => p,
+            None => {
+                self.slots.push(v);
+                self.rows.push([0.0; 4]);
+                self.slots.len() - 1
+            }
+        }
+    }
+}
+
+/// Update weights `s_k` for the odd vertex on edge (`a`, `b`) with opposite
+/// vertices `opposite` (one or two), appended to `row` as (coarse vertex,
+/// weight). Falls back to no update (the lazy wavelet) if the local system
+/// is singular, which only a degenerate diamond (repeated vertices) causes.
+/// Cost O(valence^2) per odd vertex.
+pub(crate) fn update_weights(
+    conn: &Connectivity,
+    a: u32,
+    b: u32,
+    opposite: &[u32],
+    scratch: &mut UpdateScratch,
+    row: &mut Vec<(u32, f64)>,
+) {
+    let nf = opposite.len() as f64;
+    let mut stencil: [(u32, f64); 4] = [(u32::MAX, 0.0); 4];
+    let mut size = 0;
+    for (v, g) in
+        [(a, 5.0 * nf / 12.0), (b, 5.0 * nf / 12.0)].into_iter().chain(opposite.iter().map(|&c| (c, 1.0 / 6.0)))
+    {
+        if size == 4 || stencil[..size].iter().any(|s| s.0 == v) {
+            return; // degenerate diamond: keep the lazy wavelet
+        }
+        stencil[size] = (v, g);
+        size += 1;
+    }
+    scratch.slots.clear();
+    scratch.rows.clear();
+    // Column k of M: <phi^j_k, phi^j_i> for i in the closed ring of stencil vertex k.
+    for k in 0..size {
+        let v = stencil[k].0;
+        let faces = conn.outgoing(VertexId(v)).len() as f64;
+        let s = scratch.slot(v);
+        scratch.rows[s][k] += 4.0 * faces / 6.0;
+        let mut ring = std::mem::take(&mut scratch.ring);
+        ring_with_face_counts(conn, v, &mut ring);
+        for &(w, fe) in &ring {
+            let s = scratch.slot(w);
+            scratch.rows[s][k] += fe as f64 / 3.0;
+        }
+        scratch.ring = ring;
+    }
+    // Normal equations.
+    let mut mtm = [[0.0; 4]; 4];
+    let mut rhs = [0.0; 4];
+    for (slot, r) in scratch.rows.iter().enumerate() {
+        let v = scratch.slots[slot];
+        let g = stencil[..size].iter().find(|s| s.0 == v).map_or(0.0, |s| s.1);
+        for k in 0..size {
+            rhs[k] += r[k] * g;
+            for l in 0..size {
+                mtm[k][l] += r[k] * r[l];
+            }
+        }
+    }
+    if let Some(s) = solve_spd(&mut mtm, &mut rhs, size) {
+        row.extend(stencil[..size].iter().zip(s).map(|(st, w)| (st.0, w)));
+    }
+}
+
+/// Solves a small symmetric positive definite system by Cholesky, `None`
+/// if it is not numerically positive definite.
+fn solve_spd(m: &mut [[f64; 4]; 4], rhs: &mut [f64; 4], n: usize) -> Option<[f64; 4]> {
+    let scale = (0..n).map(|i| m[i][i]).fold(0.0, f64::max);
+    for j in 0..n {
+        let mut d = m[j][j];
+        for k in 0..j {
+            d -= m[j][k] * m[j][k];
+        }
+        if d.is_nan() || d <= 1e-12 * scale {
+            return None;
+        }
+        let d = d.sqrt();
+        m[j][j] = d;
+        for i in j + 1..n {
+            let mut s = m[i][j];
+            for k in 0..j {
+                s -= m[i][k] * m[j][k];
+            }
+            m[i][j] = s / d;
+        }
+    }
+    let mut y = [0.0; 4];
+    for i in 0..n {
+        let mut s = rhs[i];
+        for k in 0..i {
+            s -= m[i][k] * y[k];
+        }
+        y[i] = s / m[i][i];
+    }
+    for i in (0..n).rev() {
+        let mut s = y[i];
+        for k in i + 1..n {
+            s -= m[k][i] * y[k];
+        }
+        y[i] = s / m[i][i];
+    }
+    y.iter().all(|x| x.is_finite()).then_some(y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cholesky_solves() {
+        let mut m = [[4.0, 1.0, 0.0, 0.0], [1.0, 3.0, 0.0, 0.0], [0.0; 4], [0.0; 4]];
+        let mut r = [1.0, 2.0, 0.0, 0.0];
+        let x = solve_spd(&mut m, &mut r, 2).unwrap();
+        assert!((4.0 * x[0] + x[1] - 1.0).abs() < 1e-14);
+        assert!((x[0] + 3.0 * x[1] - 2.0).abs() < 1e-14);
+        let mut z = [[0.0; 4]; 4];
+        assert!(solve_spd(&mut z, &mut r, 2).is_none());
+    }
+}
