@@ -54,16 +54,24 @@ pub fn check_glb_magic(bytes: &[u8]) -> Result<()> {
 /// [`IoError::Unsupported`]. Cost O(size).
 pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<MeshData> {
     let (json, bin) = if bytes.starts_with(GLB_MAGIC) { split_glb(bytes)? } else { (bytes, None) };
+    // Not `gltf::Document::from_json`: its validation indexes accessors
+    // unchecked (it panics on an out-of-range POSITION index), and it refuses
+    // files real exporters write (no POSITION min/max). Every index and
+    // enumeration is checked here where it is used instead.
     let root = json::Root::from_slice(json).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
-    let root = ::gltf::Document::from_json(root).map_err(gltf_error)?.into_json();
     let buffers = load_buffers(&root, bin, base_dir)?;
     let mut parts = Parts::default();
     for (mesh, transform) in mesh_instances(&root)? {
-        for primitive in root.meshes.get(mesh).map(|m| m.primitives.as_slice()).unwrap_or_default() {
+        let mesh = root.meshes.get(mesh).ok_or_else(|| index_error("a mesh", mesh))?;
+        for primitive in &mesh.primitives {
             parts.add(&root, &buffers, primitive, transform)?;
         }
     }
     parts.finish()
+}
+
+fn index_error(expected: &str, index: usize) -> IoError {
+    IoError::syntax(loc(), format!("{expected} index"), index.to_string().as_bytes())
 }
 
 fn gltf_error(source: ::gltf::Error) -> IoError {
@@ -218,7 +226,7 @@ fn mesh_instances(root: &json::Root) -> Result<Vec<(usize, DMat4)>> {
     let mut stack: Vec<(usize, DMat4)> = roots.into_iter().rev().map(|n| (n, DMat4::IDENTITY)).collect();
     let mut instances = Vec::new();
     while let Some((n, parent)) = stack.pop() {
-        let node = root.nodes.get(n).ok_or_else(|| IoError::syntax(loc(), "a node index", n.to_string().as_bytes()))?;
+        let node = root.nodes.get(n).ok_or_else(|| index_error("a node", n))?;
         if std::mem::replace(&mut visited[n], true) {
             return Err(IoError::syntax(
                 loc(),
@@ -340,7 +348,13 @@ impl Parts {
         };
         let nv = xyz.len() / 3;
         let base = self.positions.len();
-        self.positions.extend(xyz.chunks_exact(3).map(|c| m.transform_point3(DVec3::new(c[0], c[1], c[2]))));
+        for c in xyz.chunks_exact(3) {
+            let p = m.transform_point3(DVec3::new(c[0], c[1], c[2]));
+            if !p.is_finite() {
+                return Err(IoError::NonFinite { at: loc(), vertex: self.positions.len() });
+            }
+            self.positions.push(p);
+        }
         let indices = match p.indices {
             Some(i) => accessor(root, buffers, i.value(), &[1])?.0,
             None => (0..nv).map(|i| i as f64).collect(),
