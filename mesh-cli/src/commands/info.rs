@@ -1,0 +1,137 @@
+//! `mesh info`: counts, topology, manifoldness and defects.
+
+use mesh_core::{clean, geometry, TriMesh};
+use serde::Serialize;
+
+use crate::input::InputArgs;
+use crate::output::{finite, print_json, CliResult};
+
+/// Arguments of `mesh info`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    input: InputArgs,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Everything `mesh info` reports. `genus` is `null` when the mesh is not an
+/// oriented manifold.
+#[derive(Debug, Clone, Serialize)]
+pub struct Info {
+    /// Number of vertices (referenced or not).
+    pub vertices: usize,
+    /// Number of triangles.
+    pub faces: usize,
+    /// Number of undirected edges.
+    pub edges: usize,
+    /// chi = V - E + F over referenced vertices (eq. 2.6).
+    pub euler_characteristic: i64,
+    /// Genus from chi = 2(c - g) - b (eq. 2.7).
+    pub genus: Option<u64>,
+    /// Connected components.
+    pub components: usize,
+    /// Boundary loops (`null` when not manifold).
+    pub boundary_loops: Option<usize>,
+    /// Oriented 2-manifold (possibly with boundary).
+    pub manifold: bool,
+    /// Edges with more than two faces.
+    pub non_manifold_edges: usize,
+    /// Vertices with more than one fan of faces.
+    pub non_manifold_vertices: usize,
+    /// Edges whose two faces disagree on orientation.
+    pub inconsistent_edges: usize,
+    /// Zero-area faces.
+    pub degenerate_faces: usize,
+    /// Faces repeating the vertices of another.
+    pub duplicate_faces: usize,
+    /// Vertices no face uses.
+    pub unreferenced_vertices: usize,
+    /// Total surface area.
+    pub area: f64,
+    /// Signed enclosed volume (meaningful for closed meshes).
+    pub volume: Option<f64>,
+    /// Mean edge length.
+    pub mean_edge_length: f64,
+    /// Bounding box minimum corner.
+    pub bbox_min: Option<[f64; 3]>,
+    /// Bounding box maximum corner.
+    pub bbox_max: Option<[f64; 3]>,
+}
+
+impl Info {
+    /// Measures a mesh.
+    pub fn of(mesh: &TriMesh) -> Self {
+        let c = mesh.connectivity();
+        let report = c.non_manifold_report();
+        let bbox = geometry::bounding_box(mesh);
+        let closed = c.boundary_loop_count() == Some(0);
+        Info {
+            vertices: mesh.vertex_count(),
+            faces: mesh.face_count(),
+            edges: c.edge_count(),
+            euler_characteristic: c.euler_characteristic(),
+            genus: c.genus(),
+            components: c.components().count,
+            boundary_loops: c.boundary_loop_count(),
+            manifold: c.is_manifold(),
+            non_manifold_edges: report.edges.len(),
+            non_manifold_vertices: report.vertices.len(),
+            inconsistent_edges: report.inconsistent_edges.len(),
+            degenerate_faces: clean::degenerate_faces(mesh, clean::CleanOptions::default().degenerate_tolerance).len(),
+            duplicate_faces: clean::duplicate_faces(mesh.faces()).len(),
+            unreferenced_vertices: clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).len(),
+            area: geometry::surface_area(mesh),
+            volume: if closed { finite(geometry::enclosed_volume(mesh)) } else { None },
+            mean_edge_length: geometry::mean_edge_length(mesh),
+            bbox_min: bbox.map(|b| b.min.to_array()),
+            bbox_max: bbox.map(|b| b.max.to_array()),
+        }
+    }
+
+    fn print_text(&self, name: &str) {
+        let opt = |x: Option<usize>| x.map_or("n/a (not manifold)".to_owned(), |v| v.to_string());
+        println!("mesh: {name}");
+        println!("  vertices           {}", self.vertices);
+        println!("  faces              {}", self.faces);
+        println!("  edges              {}", self.edges);
+        println!("  euler char. (2.6)  {}", self.euler_characteristic);
+        println!("  genus (2.7)        {}", self.genus.map_or("n/a (not manifold)".to_owned(), |g| g.to_string()));
+        println!("  components         {}", self.components);
+        println!("  boundary loops     {}", opt(self.boundary_loops));
+        println!("  manifold           {}", if self.manifold { "yes" } else { "no" });
+        println!("  non-manifold edges {}", self.non_manifold_edges);
+        println!("  non-manifold verts {}", self.non_manifold_vertices);
+        println!("  inconsistent edges {}", self.inconsistent_edges);
+        println!("  degenerate faces   {}", self.degenerate_faces);
+        println!("  duplicate faces    {}", self.duplicate_faces);
+        println!("  unreferenced verts {}", self.unreferenced_vertices);
+        println!("  area               {:.6}", self.area);
+        if let Some(v) = self.volume {
+            println!("  volume             {v:.6}");
+        }
+        println!("  mean edge length   {:.6}", self.mean_edge_length);
+        if let (Some(lo), Some(hi)) = (self.bbox_min, self.bbox_max) {
+            println!(
+                "  bounding box       [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}]",
+                lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+            );
+        }
+    }
+}
+
+/// Runs `mesh info`.
+pub fn run(args: &Args) -> CliResult<()> {
+    let data = args.input.load()?;
+    let info = Info::of(&data.mesh);
+    if args.json {
+        print_json(&info)
+    } else {
+        info.print_text(&args.input.describe());
+        for note in &data.report.notes {
+            println!("  note: {note}");
+        }
+        Ok(())
+    }
+}

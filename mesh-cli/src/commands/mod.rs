@@ -1,0 +1,6 @@
+//! One module per subcommand, each with `Args` and `run`.
+
+pub mod clean;
+pub mod convert;
+pub mod info;
+pub mod report;

@@ -1,0 +1,45 @@
+//! `mesh`: every algorithm of the workspace on a mesh file or a built-in shape.
+//!
+//! Each subcommand lives in its own module under `commands/` with an `Args`
+//! struct (clap) and a `run` function; this file only lists them.
+
+mod commands;
+mod input;
+mod output;
+
+use clap::{Parser, Subcommand};
+
+/// Digital shape processing on triangle meshes.
+#[derive(Debug, Parser)]
+#[command(name = "mesh", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// One variant per subcommand, each with its module in `commands/`.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Counts, topology, manifoldness and defects of a mesh.
+    Info(commands::info::Args),
+    /// Converts between formats (OBJ, OFF, PLY, STL, glTF).
+    Convert(commands::convert::Args),
+    /// Repairs a mesh: weld, drop degenerate/duplicate faces and unreferenced vertices, orient.
+    Clean(commands::clean::Args),
+    /// Runs every analysis on a mesh and writes a JSON report and viewer-ready files.
+    Report(commands::report::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Info(args) => commands::info::run(args),
+        Command::Convert(args) => commands::convert::run(args),
+        Command::Clean(args) => commands::clean::run(args),
+        Command::Report(args) => commands::report::run(args),
+    };
+    if let Err(e) = result {
+        eprintln!("mesh: error: {e}");
+        std::process::exit(1);
+    }
+}

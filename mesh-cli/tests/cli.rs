@@ -1,0 +1,127 @@
+//! End-to-end tests of the `mesh` binary.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+fn mesh(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_mesh")).args(args).output().expect("the mesh binary runs");
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+fn json(args: &[&str]) -> Value {
+    let (ok, stdout, stderr) = mesh(args);
+    assert!(ok, "mesh {args:?} failed: {stderr}");
+    serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("mesh {args:?} printed invalid JSON ({e}): {stdout}"))
+}
+
+fn shared_data() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!("skipping: {} is absent", dir.display());
+        None
+    }
+}
+
+#[test]
+fn info_on_builtin_shapes() {
+    let v = json(&["info", "--json", "--shape", "torus", "--res", "8"]);
+    assert_eq!(v["euler_characteristic"], 0);
+    assert_eq!(v["genus"], 1);
+    assert_eq!(v["vertices"], 32 * 8);
+    let v = json(&["info", "--json"]);
+    assert_eq!(v["genus"], 0);
+    assert_eq!(v["boundary_loops"], 0);
+}
+
+#[test]
+fn info_matches_the_shared_data_readme() {
+    let Some(dir) = shared_data() else { return };
+    // file, V, F, chi, genus, boundary loops (from shared/data/README.md).
+    let table: [(&str, u64, u64, i64, u64, u64); 7] = [
+        ("cgal_nefertiti.off", 299, 562, 1, 0, 1),
+        ("cgal_mushroom.off", 2337, 4608, 1, 0, 1),
+        ("cgal_elephant.off", 2775, 5558, -4, 3, 0),
+        ("cgal_fandisk.off", 6475, 12946, 2, 0, 0),
+        ("npm_bunny.obj", 1839, 3674, 2, 0, 0),
+        ("cgal_holes.off", 4291, 8288, -5, 0, 7),
+        ("cgal_degtri_sliding.off", 8, 8, 1, 0, 1),
+    ];
+    for (file, v, f, chi, genus, loops) in table {
+        let path = dir.join(file);
+        let info = json(&["info", "--json", path.to_str().unwrap()]);
+        assert_eq!(info["vertices"], v, "{file}");
+        assert_eq!(info["faces"], f, "{file}");
+        assert_eq!(info["euler_characteristic"], chi, "{file}");
+        assert_eq!(info["genus"], genus, "{file}");
+        assert_eq!(info["boundary_loops"], loops, "{file}");
+        assert_eq!(info["manifold"], true, "{file}");
+    }
+}
+
+#[test]
+fn defects_are_counted_without_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.off");
+    // A fan of three triangles on edge 0-1 (non-manifold edge), a duplicate of
+    // the first (in another order), two unreferenced vertices, a bow-tie at 0,
+    // and a zero-area triangle.
+    let off = "OFF\n10 7 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n9 9 9\n8 8 8\n-1 0 0\n-1 1 0\n2 0 0\n\
+               3 0 1 2\n3 1 0 3\n3 0 1 4\n3 2 0 1\n3 0 7 8\n3 0 1 9\n3 7 0 8\n";
+    std::fs::write(&path, off).unwrap();
+    let info = json(&["info", "--json", path.to_str().unwrap()]);
+    assert_eq!(info["manifold"], false);
+    assert_eq!(info["genus"], Value::Null);
+    assert_eq!(info["boundary_loops"], Value::Null);
+    assert_eq!(info["non_manifold_edges"], 1);
+    assert_eq!(info["duplicate_faces"], 2);
+    assert_eq!(info["unreferenced_vertices"], 2);
+    assert_eq!(info["degenerate_faces"], 1);
+    let clean_out = dir.path().join("clean.ply");
+    let summary = json(&["clean", "--json", path.to_str().unwrap(), clean_out.to_str().unwrap()]);
+    assert_eq!(summary["duplicate_faces"], 2);
+    assert_eq!(summary["degenerate_faces"], 1);
+    assert_eq!(summary["unreferenced_vertices"], 3);
+}
+
+#[test]
+fn refuses_to_overwrite_the_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("m.off");
+    std::fs::write(&path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+    let before = std::fs::read(&path).unwrap();
+    let (ok, _, stderr) = mesh(&["convert", path.to_str().unwrap(), path.to_str().unwrap()]);
+    assert!(!ok);
+    assert!(stderr.contains("refusing to overwrite"), "{stderr}");
+    assert_eq!(std::fs::read(&path).unwrap(), before);
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.off");
+    std::fs::write(&path, "OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 7\n").unwrap();
+    let (ok, _, stderr) = mesh(&["info", path.to_str().unwrap()]);
+    assert!(!ok);
+    assert!(stderr.starts_with("mesh: error:"), "{stderr}");
+    let (ok, _, stderr) = mesh(&["info", "--shape", "teapot"]);
+    assert!(!ok && stderr.contains("unknown shape"), "{stderr}");
+    let (ok, _, _) = mesh(&["info", "--shape", "grid", "--res", "0"]);
+    assert!(!ok);
+}
+
+#[test]
+fn report_writes_viewer_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let v = json(&["report", "--shape", "cube", "--res", "4", "--out", out.to_str().unwrap()]);
+    assert_eq!(v["sections"]["info"]["euler_characteristic"], 2);
+    assert_eq!(v["sections"]["operators"]["feature_edges"], 12 * 4);
+    for f in v["files"].as_array().unwrap() {
+        assert!(out.join(f.as_str().unwrap()).is_file(), "{f}");
+    }
+    assert!(out.join("report.json").is_file());
+}

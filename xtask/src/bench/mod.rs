@@ -1,0 +1,118 @@
+//! `cargo xtask bench --mesh PATH`: times every implemented operation on one
+//! mesh, in-process, as the median of several runs, once on one thread and
+//! once with the default thread count.
+//!
+//! Operation names are stable and shared with `../shared/peers/peer_bench.py`
+//! so that figures compare side by side (see BENCHMARKS.md):
+//! `read`, `connectivity` (half-edges with edge- and vertex-manifold checks),
+//! `boundary_loops` (connectivity from scratch plus loops), `normals_area`,
+//! `cotan_laplacian`, `mass_voronoi`, `intrinsic_delaunay`, ... Each crate
+//! adds its operations in one module registered in [`GROUPS`].
+
+mod core;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use mesh_io::MeshData;
+use serde_json::{json, Map, Value};
+
+use crate::Result;
+
+/// An operation to time: a name and a closure run once per sample.
+pub struct Operation<'a> {
+    /// Stable name (see the module documentation).
+    pub name: &'static str,
+    /// One run; its result is dropped outside the timed region.
+    pub run: Box<dyn FnMut() -> Result<Box<dyn std::any::Any + Send>> + Send + 'a>,
+}
+
+impl<'a> Operation<'a> {
+    /// An operation from a closure returning anything.
+    pub fn new<T: Send + 'static>(name: &'static str, mut f: impl FnMut() -> Result<T> + Send + 'a) -> Self {
+        Self { name, run: Box::new(move || f().map(|x| Box::new(x) as Box<dyn std::any::Any + Send>)) }
+    }
+}
+
+/// Every group of operations: a function from the mesh file and its content
+/// to the operations.
+type Group = for<'a> fn(&'a std::path::Path, &'a MeshData) -> Vec<Operation<'a>>;
+const GROUPS: &[Group] = &[core::operations];
+
+/// Arguments of `cargo xtask bench`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The mesh file to time operations on.
+    #[arg(long)]
+    mesh: PathBuf,
+    /// Write the figures as JSON here.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Runs per operation (the median is reported).
+    #[arg(long, default_value_t = 7)]
+    runs: usize,
+    /// Only operations whose name contains this text.
+    #[arg(long)]
+    only: Option<String>,
+}
+
+/// Median wall time in milliseconds; the output of each run is dropped after
+/// the clock stops.
+fn time(op: &mut Operation<'_>, runs: usize) -> Result<f64> {
+    let mut samples = Vec::with_capacity(runs);
+    for _ in 0..runs.max(1) {
+        let start = Instant::now();
+        let out = (op.run)()?;
+        samples.push(start.elapsed().as_secs_f64() * 1e3);
+        drop(out);
+    }
+    samples.sort_by(f64::total_cmp);
+    Ok(samples[samples.len() / 2])
+}
+
+/// Runs `cargo xtask bench`.
+pub fn run(args: &Args) -> Result<()> {
+    let data = mesh_io::read(&args.mesh)?;
+    let threads = rayon::current_num_threads();
+    println!(
+        "{} ({} vertices, {} faces), median of {} runs, ms",
+        args.mesh.display(),
+        data.mesh.vertex_count(),
+        data.mesh.face_count(),
+        args.runs
+    );
+    println!("{:<28} {:>12} {:>12}", "operation", "1 thread", format!("{threads} threads"));
+    let single = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let mut results = Map::new();
+    for group in GROUPS {
+        for mut op in group(&args.mesh, &data) {
+            if args.only.as_deref().is_some_and(|o| !op.name.contains(o)) {
+                continue;
+            }
+            mesh_core::faer::set_global_parallelism(mesh_core::faer::Par::Seq);
+            let one = single.install(|| time(&mut op, args.runs));
+            mesh_core::faer::set_global_parallelism(mesh_core::faer::Par::rayon(0));
+            let all = time(&mut op, args.runs);
+            let show = |r: &Result<f64>| match r {
+                Ok(ms) => format!("{ms:12.3}"),
+                Err(e) => format!("error: {e}"),
+            };
+            println!("{:<28} {:>12} {:>12}", op.name, show(&one), show(&all));
+            let value = |r: Result<f64>| r.map_or_else(|e| Value::String(format!("error: {e}")), |ms| json!(ms));
+            results
+                .insert(op.name.to_owned(), json!({"single_thread_ms": value(one), "default_threads_ms": value(all)}));
+        }
+    }
+    if let Some(path) = &args.json {
+        let out = json!({
+            "mesh": args.mesh.display().to_string(),
+            "vertices": data.mesh.vertex_count(),
+            "faces": data.mesh.face_count(),
+            "runs": args.runs,
+            "threads": threads,
+            "ms": results,
+        });
+        std::fs::write(path, serde_json::to_string_pretty(&out)?)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,48 @@
+//! Project automation, one subcommand per module (the rust-analyzer layout):
+//!
+//! - `cargo xtask validate [--json PATH]`: every crate against analytic ground
+//!   truth and invariants; prints one table, writes a JSON report, exits
+//!   non-zero on any miss.
+//! - `cargo xtask bench --mesh PATH [--json OUT] [--runs N]`: times every
+//!   implemented operation on one mesh, single-threaded and with default
+//!   threads, under stable names shared with `../shared/peers/peer_bench.py`.
+//! - `cargo xtask publish-check`: packages every publishable crate.
+
+mod bench;
+mod publish_check;
+mod validate;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Debug, Parser)]
+#[command(name = "cargo xtask")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Validate every crate against ground truth and invariants.
+    Validate(validate::Args),
+    /// Time every operation on a mesh.
+    Bench(bench::Args),
+    /// Package every publishable crate in dependency order.
+    PublishCheck(publish_check::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Validate(args) => validate::run(args),
+        Command::Bench(args) => bench::run(args),
+        Command::PublishCheck(args) => publish_check::run(args),
+    };
+    if let Err(e) = result {
+        eprintln!("xtask: {e}");
+        std::process::exit(1);
+    }
+}
+
+/// Any error, printed by `main`.
+pub type Result<T> = std::result::Result<T, Box<dyn std::error::Error + Send + Sync>>;
