@@ -26,6 +26,8 @@ enum Command {
     Convert(commands::convert::Args),
     /// Repairs a mesh: weld, drop degenerate/duplicate faces and unreferenced vertices, orient.
     Clean(commands::clean::Args),
+    /// Writes a built-in shape to a mesh file.
+    Generate(commands::generate::Args),
     /// Runs every analysis on a mesh and writes a JSON report and viewer-ready files.
     Report(commands::report::Args),
 }
@@ -36,6 +38,7 @@ fn main() {
         Command::Info(args) => commands::info::run(args),
         Command::Convert(args) => commands::convert::run(args),
         Command::Clean(args) => commands::clean::run(args),
+        Command::Generate(args) => commands::generate::run(args),
         Command::Report(args) => commands::report::run(args),
     };
     if let Err(e) = result {

@@ -2,5 +2,6 @@
 
 pub mod clean;
 pub mod convert;
+pub mod generate;
 pub mod info;
 pub mod report;

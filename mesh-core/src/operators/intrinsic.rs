@@ -10,10 +10,12 @@
 //! already Delaunay. The vertex set and the surface metric are unchanged:
 //! only which pairs of vertices are joined by (geodesic) edges changes.
 
-use sprs::{CsMat, TriMat};
+use sprs::CsMat;
+
+use super::pattern::EdgePattern;
 
 use crate::error::{MeshError, Result};
-use crate::ids::HalfedgeId;
+use crate::ids::{HalfedgeId, VertexId};
 use crate::mesh::TriMesh;
 
 /// Options of [`IntrinsicTriangulation::delaunay`].
@@ -213,29 +215,36 @@ impl IntrinsicTriangulation {
 
     /// Cotangent Laplacian of the intrinsic triangulation (same convention as
     /// [`super::cotan_laplacian`]): symmetric, zero row sums, and, once
-    /// Delaunay, non-negative weights on all interior edges. O(F log F).
+    /// Delaunay, non-negative weights on all interior edges. Parallel
+    /// intrinsic edges between the same two vertices add up; loops are
+    /// skipped. O(F log F) for sorting the edges.
     pub fn cotan_laplacian(&self) -> CsMat<f64> {
-        let n = self.vertex_count;
-        let mut tri = TriMat::with_capacity((n, n), 4 * self.lengths.len());
+        let mut edges: Vec<([VertexId; 2], f64)> = Vec::with_capacity(self.lengths.len() / 2 + 1);
         for h in 0..self.lengths.len() {
-            let h = HalfedgeId(h as u32);
-            let (i, j) = (
-                self.faces[h.face().idx()][h.corner()] as usize,
-                self.faces[h.face().idx()][(h.corner() + 1) % 3] as usize,
-            );
-            if i == j {
+            let t = self.twin[h];
+            if t.is_valid() && t.0 < h as u32 {
                 continue;
             }
-            let w = 0.5 * self.opposite_cotan(h);
-            tri.add_triplet(i, j, -w);
-            tri.add_triplet(j, i, -w);
-            tri.add_triplet(i, i, w);
-            tri.add_triplet(j, j, w);
+            let h = HalfedgeId(h as u32);
+            let face = self.faces[h.face().idx()];
+            let (i, j) = (face[h.corner()], face[(h.corner() + 1) % 3]);
+            if i != j {
+                edges.push(([VertexId(i.min(j)), VertexId(i.max(j))], self.edge_cotan_weight(h)));
+            }
         }
-        for i in 0..n {
-            tri.add_triplet(i, i, 0.0);
+        edges.sort_unstable_by_key(|(e, _)| *e);
+        let mut pairs: Vec<[VertexId; 2]> = Vec::with_capacity(edges.len());
+        let mut weights: Vec<f64> = Vec::with_capacity(edges.len());
+        for (e, w) in edges {
+            match (pairs.last(), weights.last_mut()) {
+                (Some(last), Some(sum)) if *last == e => *sum += w,
+                _ => {
+                    pairs.push(e);
+                    weights.push(w);
+                }
+            }
         }
-        tri.to_csr()
+        EdgePattern::new(self.vertex_count, &pairs).laplacian(&weights)
     }
 
     /// Cotangent weights of the interior (flippable) edges, each listed once.
