@@ -70,11 +70,25 @@ fn ratio(a: f64, b: f64) -> f64 {
 /// non-empty span. Cost O(p^2), no allocation.
 #[inline]
 pub fn basis_values(kv: &KnotVector, span: usize, u: f64) -> [f64; CAP] {
-    let p = kv.degree();
-    let t = kv.knots();
     let mut n = [0.0; CAP];
-    let mut left = [0.0; CAP];
-    let mut right = [0.0; CAP];
+    match kv.degree() {
+        1 => values_core::<2, 1>(kv, span, u, &mut n),
+        2 => values_core::<3, 2>(kv, span, u, &mut n),
+        3 => values_core::<4, 3>(kv, span, u, &mut n),
+        _ => values_core::<CAP, 0>(kv, span, u, &mut n),
+    }
+    n
+}
+
+/// A2.2 with scratch arrays of capacity `C > p`. Degrees 1 to 3 are
+/// dispatched with `P = p` so that the loops have compile-time bounds (and
+/// unroll); `P = 0` reads the degree at run time.
+#[inline(always)]
+fn values_core<const C: usize, const P: usize>(kv: &KnotVector, span: usize, u: f64, n: &mut [f64; CAP]) {
+    let p = if P > 0 { P } else { kv.degree() };
+    let t = kv.knots();
+    let mut left = [0.0; C];
+    let mut right = [0.0; C];
     n[0] = 1.0;
     for j in 1..=p {
         left[j] = u - t[span + 1 - j];
@@ -87,7 +101,6 @@ pub fn basis_values(kv: &KnotVector, span: usize, u: f64) -> [f64; CAP] {
         }
         n[j] = saved;
     }
-    n
 }
 
 /// The non-zero basis functions and their derivatives of orders `0..N` at `u`
@@ -116,24 +129,45 @@ pub fn basis_derivatives_into(kv: &KnotVector, span: usize, u: f64, n: usize, ou
 }
 
 /// A2.3 of Piegl & Tiller: the triangle `ndu` holds the basis functions of all
-/// degrees up to `p` (upper part) and the knot differences (lower part); the
+/// degrees up to `p` (upper part) and the reciprocal knot differences (lower
+/// part); the
 /// derivatives are combinations of lower-degree functions. Writes orders
 /// `0..=min(n, p)` through `write(order, j, value)`.
 #[inline(always)]
-fn derivatives_core(kv: &KnotVector, span: usize, u: f64, n: usize, mut write: impl FnMut(usize, usize, f64)) {
-    let p = kv.degree();
+fn derivatives_core(kv: &KnotVector, span: usize, u: f64, n: usize, write: impl FnMut(usize, usize, f64)) {
+    match kv.degree() {
+        1 => derivatives_sized::<2, 1>(kv, span, u, n, write),
+        2 => derivatives_sized::<3, 2>(kv, span, u, n, write),
+        3 => derivatives_sized::<4, 3>(kv, span, u, n, write),
+        _ => derivatives_sized::<CAP, 0>(kv, span, u, n, write),
+    }
+}
+
+/// A2.3 with scratch tables of capacity `C > p`, degree `P` fixed at compile
+/// time (or read at run time when `P = 0`), like [`values_core`].
+#[inline(always)]
+fn derivatives_sized<const C: usize, const P: usize>(
+    kv: &KnotVector,
+    span: usize,
+    u: f64,
+    n: usize,
+    mut write: impl FnMut(usize, usize, f64),
+) {
+    let p = if P > 0 { P } else { kv.degree() };
     let t = kv.knots();
-    let mut ndu = [[0.0; CAP]; CAP];
-    let mut left = [0.0; CAP];
-    let mut right = [0.0; CAP];
+    let mut ndu = [[0.0; C]; C];
+    let mut left = [0.0; C];
+    let mut right = [0.0; C];
     ndu[0][0] = 1.0;
     for j in 1..=p {
         left[j] = u - t[span + 1 - j];
         right[j] = t[span + j] - u;
         let mut saved = 0.0;
         for r in 0..j {
-            ndu[j][r] = right[r + 1] + left[j - r];
-            let temp = ndu[r][j - 1] / ndu[j][r];
+            // The lower triangle keeps reciprocals of the knot differences, so
+            // the derivative pass below multiplies instead of dividing.
+            ndu[j][r] = 1.0 / (right[r + 1] + left[j - r]);
+            let temp = ndu[r][j - 1] * ndu[j][r];
             ndu[r][j] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;
         }
@@ -146,7 +180,7 @@ fn derivatives_core(kv: &KnotVector, span: usize, u: f64, n: usize, mut write: i
     if n == 0 {
         return;
     }
-    let mut a = [[0.0; CAP]; 2];
+    let mut a = [[0.0; C]; 2];
     let p_i = p as isize;
     for r in 0..=p {
         let (mut s1, mut s2) = (0usize, 1usize);
@@ -160,7 +194,7 @@ fn derivatives_core(kv: &KnotVector, span: usize, u: f64, n: usize, mut write: i
             let pk = p_i - k_i;
             let mut d = 0.0;
             if rk >= 0 {
-                a[s2][0] = a[s1][0] / ndu[(pk + 1) as usize][rk as usize];
+                a[s2][0] = a[s1][0] * ndu[(pk + 1) as usize][rk as usize];
                 d = a[s2][0] * ndu[rk as usize][pk as usize];
             }
             let j1 = if rk >= -1 { 1 } else { -rk };
@@ -168,11 +202,11 @@ fn derivatives_core(kv: &KnotVector, span: usize, u: f64, n: usize, mut write: i
             for j in j1..=j2 {
                 let j = j as usize;
                 let idx = (rk + j as isize) as usize;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[(pk + 1) as usize][idx];
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[(pk + 1) as usize][idx];
                 d += a[s2][j] * ndu[idx][pk as usize];
             }
             if r_i <= pk {
-                a[s2][k] = -a[s1][k - 1] / ndu[(pk + 1) as usize][r];
+                a[s2][k] = -a[s1][k - 1] * ndu[(pk + 1) as usize][r];
                 d += a[s2][k] * ndu[r][pk as usize];
             }
             write(k, r, d * factor);

@@ -240,19 +240,40 @@ impl NurbsSurface {
 
     /// `A^(k,l)` (and `w^(k,l)` in the last coordinate) for `k + l < N`
     /// (Piegl & Tiller A3.6 on homogeneous points).
+    /// Dispatches the common degrees to loops of compile-time length.
     #[inline(always)]
     fn homogeneous_derivatives<const N: usize>(&self, bu: &SpanBasis<N>, bv: &SpanBasis<N>) -> [[DVec4; N]; N] {
+        match (self.knots_u.degree(), self.knots_v.degree()) {
+            (3, 3) => self.contract::<N, 4, 4>(bu, bv),
+            (2, 2) => self.contract::<N, 3, 3>(bu, bv),
+            (2, 1) => self.contract::<N, 3, 2>(bu, bv),
+            (1, 1) => self.contract::<N, 2, 2>(bu, bv),
+            _ => self.contract::<N, 0, 0>(bu, bv),
+        }
+    }
+
+    /// `sum_ij N^(k)_i(u) N^(l)_j(v) P^w_ij` over the `(p+1) x (q+1)` active
+    /// control points; `P1 = p + 1` and `Q1 = q + 1` when known at compile
+    /// time, 0 for run-time degrees.
+    #[inline(always)]
+    fn contract<const N: usize, const P1: usize, const Q1: usize>(
+        &self,
+        bu: &SpanBasis<N>,
+        bv: &SpanBasis<N>,
+    ) -> [[DVec4; N]; N] {
         let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
+        let p1 = if P1 > 0 { P1 } else { p + 1 };
+        let q1 = if Q1 > 0 { Q1 } else { q + 1 };
         let nv = self.count_v();
         let (fu, fv) = (bu.span - p, bv.span - q);
         let mut a = [[DVec4::ZERO; N]; N];
-        for i in 0..=p {
+        for i in 0..p1 {
             let start = (fu + i) * nv + fv;
-            let row = &self.homogeneous[start..=start + q];
+            let row = &self.homogeneous[start..start + q1];
             let mut tmp = [DVec4::ZERO; N];
-            for (j, &pw) in row.iter().enumerate() {
+            for j in 0..q1 {
                 for l in 0..N {
-                    tmp[l] += pw * bv.ders[l][j];
+                    tmp[l] += row[j] * bv.ders[l][j];
                 }
             }
             for k in 0..N {
