@@ -1,0 +1,353 @@
+//! Local polynomial fits of the surface as a height field over the tangent
+//! plane ("osculating jets", Cazals and Pouget 2005): the quadric (what
+//! libigl's `principal_curvature` fits), the cubic through positions and
+//! normals of Goldfeather and Interrante 2004, and the quartic, the
+//! default. Curvatures come from the fundamental forms of the fitted height
+//! field (eq. 2.21-2.24), so a tilted tangent plane costs no accuracy.
+//!
+//! A jet of degree `d` fitted to a neighbourhood of size `h` gives
+//! curvatures with error `O(h^(d - 1))` (Cazals and Pouget), one order more
+//! where the neighbourhood is symmetric. The least-squares normal equations
+//! are assembled from power sums of the data (O(1) per point whatever the
+//! degree) and solved by `L D L^T`, with a pivoted Cholesky rank test
+//! deciding when the data cannot carry the polynomial (one-sided
+//! neighbourhoods at a boundary, too few points): the fit then grows the
+//! neighbourhood by one ring, then lowers the degree.
+
+use glam::DVec3;
+use mesh_core::TriMesh;
+
+use crate::error::Result;
+use crate::frame::{solve_spd, tangent_basis, Sym2};
+use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
+use crate::normals::{vertex_normals, Normals};
+use crate::par;
+use crate::status::{topological_status, VertexStatus};
+use crate::tensor::LocalTensor;
+
+/// Degree of the fitted height field.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Degree {
+    /// `z = A x^2 / 2 + B x y + C y^2 / 2` (plus the linear terms when the
+    /// normal is refined): curvature error `O(h)`, `O(h^2)` on symmetric
+    /// neighbourhoods. Needs 3 (5) data.
+    Quadric,
+    /// The quadric plus the four cubic terms `x^3, x^2 y, x y^2, y^3`, which
+    /// absorb the odd part of the surface: curvature error `O(h^2)` on any
+    /// neighbourhood. Needs 7 (9) data.
+    Cubic,
+    /// The cubic plus the five quartic terms, which also absorb the even
+    /// fourth-order part (a sphere's `r^4 / 8`): curvature error `O(h^3)`.
+    /// Needs 12 (14) data: a 2-ring.
+    #[default]
+    Quartic,
+}
+
+impl Degree {
+    /// The lower of two degrees.
+    pub(crate) fn min_with(self, other: Self) -> Self {
+        let rank = |d: Self| d as u8;
+        if rank(self) <= rank(other) {
+            self
+        } else {
+            other
+        }
+    }
+}
+
+/// Options of [`crate::Method::Fit`]. The default, a quartic through the
+/// 2-ring positions with the tangent plane refined, is the most accurate
+/// estimator of the crate on every validation surface (README).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FitOptions {
+    /// The points fitted (the centre vertex is the origin of the fit).
+    pub neighborhood: Neighborhood,
+    /// The polynomial.
+    pub degree: Degree,
+    /// Fit the neighbours' vertex normals too, two slope equations per
+    /// neighbour (Goldfeather and Interrante 2004), which triples the data
+    /// of a 1-ring but imports the normals' error: weighted face-normal
+    /// averages are only first-order accurate at irregular vertices.
+    pub use_normals: bool,
+    /// Fit the linear terms too, tilting the tangent plane to the fitted
+    /// surface instead of trusting the vertex normal (the output normal is
+    /// the fitted one). Makes the result independent of the normal's error.
+    pub refine_normal: bool,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self { neighborhood: Neighborhood::Rings(2), degree: Degree::Quartic, use_normals: false, refine_normal: true }
+    }
+}
+
+/// Exponents `(a, b)` of the monomial `x^a y^b` of each column of the full
+/// design: `z = D x + E y + c20 x^2 + B x y + c02 y^2 + (cubic) + (quartic)`,
+/// with `A = 2 c20`, `C = 2 c02` the second derivatives.
+const MONOMIALS: [(usize, usize); 14] =
+    [(1, 0), (0, 1), (2, 0), (1, 1), (0, 2), (3, 0), (2, 1), (1, 2), (0, 3), (4, 0), (3, 1), (2, 2), (1, 3), (0, 4)];
+
+/// Number of columns of the full design.
+const COLUMNS: usize = MONOMIALS.len();
+
+/// The columns active for the options: the range `first .. last` of
+/// [`MONOMIALS`] (the linear terms only when the normal is refined).
+fn active_columns(options: &FitOptions) -> (usize, usize) {
+    let first = if options.refine_normal { 0 } else { 2 };
+    let last = match options.degree {
+        Degree::Quadric => 5,
+        Degree::Cubic => 9,
+        Degree::Quartic => 14,
+    };
+    (first, last)
+}
+
+/// Rank test of the fits (see [`solve_spd`]): a column whose squared sine to
+/// the span of the others is below this makes the fit ill-posed, and the
+/// next fallback is tried. Pivoting makes the test insensitive to this
+/// value over 1e-8..1e-14 on the validation shapes.
+const PIVOT_TOLERANCE: f64 = 1e-10;
+
+/// Index of `x^a y^b` in a triangular table of monomials with `a + b <= d`
+/// stored row by row (`a` major): row `a` starts at `a (2d + 3 - a) / 2`.
+#[inline(always)]
+const fn tri(d: usize, a: usize, b: usize) -> usize {
+    a * (2 * d + 3 - a) / 2 + b
+}
+
+/// Power sums of the data, from which the least-squares normal equations of
+/// any set of monomial columns are assembled: a position row of column
+/// `x^a y^b` times one of `x^c y^d` sums to `sum x^(a+c) y^(b+d)`, and the
+/// slope rows (derivatives of the monomials) likewise. O(1) per point
+/// whatever the number of columns.
+struct Moments {
+    /// `sum x^a y^b` over positions, `a + b <= 8` (triangular table).
+    pos: [f64; 45],
+    /// `sum z x^a y^b`, `a + b <= 4`.
+    z: [f64; 15],
+    /// `sum x^a y^b` over points with a usable normal, `a + b <= 6`.
+    nrm: [f64; 28],
+    /// `sum s_x x^a y^b`, `a + b <= 3` (slope along x).
+    sx: [f64; 10],
+    /// `sum s_y x^a y^b`, `a + b <= 3` (slope along y).
+    sy: [f64; 10],
+    /// Number of equations.
+    rows: usize,
+}
+
+impl Moments {
+    fn new() -> Self {
+        Self { pos: [0.0; 45], z: [0.0; 15], nrm: [0.0; 28], sx: [0.0; 10], sy: [0.0; 10], rows: 0 }
+    }
+
+    /// A position `z(x, y)`.
+    #[inline]
+    fn add_point(&mut self, x: f64, y: f64, z: f64) {
+        let xp = powers::<9>(x);
+        let yp = powers::<9>(y);
+        for a in 0..9 {
+            for b in 0..9 - a {
+                self.pos[tri(8, a, b)] += xp[a] * yp[b];
+            }
+        }
+        for a in 0..5 {
+            let zx = z * xp[a];
+            for b in 0..5 - a {
+                self.z[tri(4, a, b)] += zx * yp[b];
+            }
+        }
+        self.rows += 1;
+    }
+
+    /// Slopes `(z_x, z_y)` at `(x, y)`.
+    #[inline]
+    fn add_slopes(&mut self, x: f64, y: f64, sx: f64, sy: f64) {
+        let xp = powers::<7>(x);
+        let yp = powers::<7>(y);
+        for a in 0..7 {
+            for b in 0..7 - a {
+                self.nrm[tri(6, a, b)] += xp[a] * yp[b];
+            }
+        }
+        for a in 0..4 {
+            let (px, py) = (sx * xp[a], sy * xp[a]);
+            for b in 0..4 - a {
+                self.sx[tri(3, a, b)] += px * yp[b];
+                self.sy[tri(3, a, b)] += py * yp[b];
+            }
+        }
+        self.rows += 2;
+    }
+
+    /// Least-squares solution over the active columns (see
+    /// [`active_columns`]), as coefficients of the full design (inactive
+    /// ones zero); `None` when rank deficient.
+    fn solve(&self, options: &FitOptions) -> Option<[f64; COLUMNS]> {
+        let (first, last) = active_columns(options);
+        // One monomorphized solver per size: fixed-size loops unroll.
+        match last - first {
+            3 => self.solve_range::<3>(first),
+            5 => self.solve_range::<5>(first),
+            7 => self.solve_range::<7>(first),
+            9 => self.solve_range::<9>(first),
+            12 => self.solve_range::<12>(first),
+            _ => self.solve_range::<14>(first),
+        }
+    }
+
+    /// The solve over columns `first .. first + N`.
+    fn solve_range<const N: usize>(&self, first: usize) -> Option<[f64; COLUMNS]> {
+        if self.rows < N {
+            return None;
+        }
+        let mut m = [[0.0; N]; N];
+        let mut rhs = [0.0; N];
+        for i in 0..N {
+            let (ai, bi) = MONOMIALS[first + i];
+            for j in 0..=i {
+                let (aj, bj) = MONOMIALS[first + j];
+                let mut v = self.pos[tri(8, ai + aj, bi + bj)];
+                if ai > 0 && aj > 0 {
+                    v += (ai * aj) as f64 * self.nrm[tri(6, ai + aj - 2, bi + bj)];
+                }
+                if bi > 0 && bj > 0 {
+                    v += (bi * bj) as f64 * self.nrm[tri(6, ai + aj, bi + bj - 2)];
+                }
+                m[i][j] = v;
+                m[j][i] = v;
+            }
+            let mut r = self.z[tri(4, ai, bi)];
+            if ai > 0 {
+                r += ai as f64 * self.sx[tri(3, ai - 1, bi)];
+            }
+            if bi > 0 {
+                r += bi as f64 * self.sy[tri(3, ai, bi - 1)];
+            }
+            rhs[i] = r;
+        }
+        solve_spd(&m, &mut rhs, PIVOT_TOLERANCE)?;
+        let mut full = [0.0; COLUMNS];
+        full[first..first + N].copy_from_slice(&rhs);
+        Some(full)
+    }
+}
+
+/// `[1, t, t^2, ..., t^(N-1)]`.
+#[inline]
+fn powers<const N: usize>(t: f64) -> [f64; N] {
+    let mut p = [1.0; N];
+    for k in 1..N {
+        p[k] = p[k - 1] * t;
+    }
+    p
+}
+
+/// Fits the height field at one vertex; `None` when the system is rank
+/// deficient. Coordinates are scaled by the mean neighbour distance for
+/// conditioning.
+fn fit_vertex(p: &[DVec3], nv: &[DVec3], centre: usize, ring: &[u32], options: &FitOptions) -> Option<LocalTensor> {
+    let n = nv[centre];
+    let (t1, t2) = tangent_basis(n);
+    let c = p[centre];
+    let neighbours = ring.get(1..).unwrap_or(&[]);
+    let scale = neighbours.iter().map(|&q| p[q as usize].distance(c)).sum::<f64>() / neighbours.len().max(1) as f64;
+    if scale.is_nan() || scale <= 0.0 {
+        return None;
+    }
+    let inv = 1.0 / scale;
+    let mut mom = Moments::new();
+    for &q in neighbours {
+        let q = q as usize;
+        let d = (p[q] - c) * inv;
+        let (x, y) = (d.dot(t1), d.dot(t2));
+        mom.add_point(x, y, d.dot(n));
+        if options.use_normals {
+            let m = nv[q];
+            let mz = m.dot(n);
+            if mz > 0.2 {
+                mom.add_slopes(x, y, -m.dot(t1) / mz, -m.dot(t2) / mz);
+            }
+        }
+    }
+    let s = mom.solve(options)?;
+    let hessian = Sym2::new(2.0 * s[2], s[3], 2.0 * s[4]).scaled(inv);
+    Some(height_field_tensor(n, t1, t2, [s[0], s[1]], hessian))
+}
+
+/// The curvature tensor at the origin of the height field
+/// `z = g . (x, y) + (x, y) H (x, y)^T / 2` over the frame `(t1, t2, n)`,
+/// from its fundamental forms (eq. 2.21-2.22): `s_u = (1, 0, g_x)`,
+/// `s_v = (0, 1, g_y)`, second derivatives `H`, normal `(-g, 1) / w`.
+fn height_field_tensor(n: DVec3, t1: DVec3, t2: DVec3, g: [f64; 2], hess: Sym2) -> LocalTensor {
+    let w = (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
+    let normal_local = DVec3::new(-g[0], -g[1], 1.0) / w;
+    let su = DVec3::new(1.0, 0.0, g[0]);
+    let sv = DVec3::new(0.0, 1.0, g[1]);
+    // Second fundamental form in (s_u, s_v): L, M, N = n . s_uu, ... (eq. 2.22).
+    let second = hess.scaled(1.0 / w);
+    // Orthonormal tangent basis: e1 along s_u, e2 = n x e1; s_u = a11 e1,
+    // s_v = a12 e1 + a22 e2, and II in e-coordinates is J^-T II J^-1.
+    let a11 = su.length();
+    let e1 = su / a11;
+    let e2 = normal_local.cross(e1);
+    let (a12, a22) = (sv.dot(e1), sv.dot(e2));
+    let (i11, i12, i22) = (1.0 / a11, -a12 / (a11 * a22), 1.0 / a22);
+    // Columns of J^-1 are (i11, 0) and (i12, i22).
+    let x = [i11, 0.0];
+    let y = [i12, i22];
+    // Curvature is positive where the surface bends away from the normal: -II.
+    let form = Sym2::new(-second.form(x, x), -second.form(x, y), -second.form(y, y));
+    let to_world = |v: DVec3| v.x * t1 + v.y * t2 + v.z * n;
+    LocalTensor {
+        normal: to_world(normal_local),
+        t1: to_world(e1),
+        t2: to_world(e2),
+        form,
+        status: VertexStatus::Valid,
+    }
+}
+
+/// The fit estimator over every vertex. When the data cannot carry the
+/// polynomial (rank test) or the fitted normal turns more than 60 degrees
+/// from the start, retries on the neighbourhood grown by a ring (or 1.5x
+/// the radius), then with lower degrees; flags the vertex degenerate when
+/// nothing fits. O(sum of neighbourhood sizes), parallel over vertices.
+pub(crate) fn estimate(mesh: &TriMesh, normals: Normals, options: &FitOptions) -> Result<Vec<LocalTensor>> {
+    let nbh = options.neighborhood.validate()?;
+    let nv = vertex_normals(mesh, normals);
+    let adj = Adjacency::new(mesh);
+    let status = topological_status(mesh);
+    let p = mesh.positions();
+    let grown = match nbh {
+        Neighborhood::Rings(k) => Neighborhood::Rings(k + 1),
+        Neighborhood::Ball(r) => Neighborhood::Ball(1.5 * r),
+    };
+    let attempts = [
+        (*options, nbh),
+        (*options, grown),
+        (FitOptions { degree: Degree::Cubic.min_with(options.degree), ..*options }, grown),
+        (FitOptions { degree: Degree::Quadric, ..*options }, grown),
+        (FitOptions { degree: Degree::Quadric, use_normals: true, refine_normal: false, ..*options }, grown),
+    ];
+    Ok(par::map_with(mesh.vertex_count(), Gatherer::default, |g, i| {
+        let n = nv[i];
+        if status[i] == VertexStatus::Isolated || n == DVec3::ZERO {
+            let s = if status[i] == VertexStatus::Isolated { status[i] } else { VertexStatus::Degenerate };
+            return LocalTensor::empty(n, s);
+        }
+        let mut gathered = None;
+        for (f, region) in &attempts {
+            if gathered != Some(*region) {
+                g.gather(&adj, p, i, *region);
+                gathered = Some(*region);
+            }
+            if let Some(mut t) = fit_vertex(p, &nv, i, &g.vertices, f) {
+                if t.form.is_finite() && t.normal.is_finite() && t.normal.dot(n) > 0.5 {
+                    t.status = status[i];
+                    return t;
+                }
+            }
+        }
+        LocalTensor::empty(n, VertexStatus::Degenerate)
+    }))
+}

@@ -1,0 +1,62 @@
+//! Discrete curvature of triangle meshes (seed section 2.5): Gaussian
+//! curvature by angle defect, mean curvature by the cotangent formula, the
+//! curvature tensor with principal curvatures and directions, integral
+//! curvature over neighbourhoods, shape index and curvedness.
+//!
+//! | function | what it computes | seed |
+//! |---|---|---|
+//! | [`gaussian_curvature`] | angle defect, integrated and pointwise, boundary geodesic curvature (Gauss-Bonnet exact) | eq. 2.25 |
+//! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_core::operators::cotan_laplacian`] | eq. 2.26 |
+//! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`Method`]: cubic/quadric [fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
+//! | [`integral_curvature`] | Gaussian and mean curvature integrated over a k-ring or ball | 2.5 |
+//! | [`shape_index`], [`curvedness`] | Koenderink's shape descriptors from `k1`, `k2` | |
+//!
+//! Every function takes any [`TriMesh`] (non-manifold, degenerate,
+//! disconnected) and returns finite values with a per-vertex
+//! [`VertexStatus`] saying which are estimates; nothing panics or returns
+//! NaN. Curvatures are positive where the surface bends away from its normal
+//! (a sphere with outward normals has `K = H = k1 = k2 = 1 / r^2, 1 / r`).
+//!
+//! ```
+//! use mesh_curvature::{curvature_tensor, gaussian_curvature, mean_curvature, TensorOptions};
+//! use mesh_core::shapes;
+//!
+//! let sphere = shapes::icosphere(4)?;
+//! let k = gaussian_curvature(&sphere, &Default::default())?;
+//! assert!((k.total() - 4.0 * std::f64::consts::PI).abs() < 1e-10); // Gauss-Bonnet, chi = 2
+//! let h = mean_curvature(&sphere, &Default::default())?;
+//! assert!(h.pointwise.iter().all(|h| (h - 1.0).abs() < 1e-2));
+//!
+//! let t = curvature_tensor(&sphere, &TensorOptions::default())?;
+//! assert!(t.k1.iter().chain(&t.k2).all(|k| (k - 1.0).abs() < 1e-3));
+//! # Ok::<(), mesh_curvature::CurvatureError>(())
+//! ```
+#![deny(missing_docs)]
+
+pub mod area;
+pub mod error;
+pub mod fit;
+mod frame;
+pub mod gaussian;
+pub mod integral;
+pub mod mean;
+pub mod neighborhood;
+mod normal_cycle;
+pub mod normals;
+mod par;
+mod rusinkiewicz;
+pub mod status;
+pub mod tensor;
+
+pub use area::AreaKind;
+pub use error::{CurvatureError, Result};
+pub use fit::{Degree, FitOptions};
+pub use gaussian::{gaussian_curvature, GaussianCurvature, GaussianOptions};
+pub use integral::{integral_curvature, IntegralCurvature};
+pub use mean::{mean_curvature, MeanCurvature, MeanOptions};
+pub use neighborhood::Neighborhood;
+pub use normals::Normals;
+pub use status::{StatusCounts, VertexStatus};
+pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, Method, TensorOptions};
+
+pub use mesh_core::TriMesh;
