@@ -1,2 +1,62 @@
-//! Surface parameterization for the mesh workspace (work in progress).
+//! Surface parameterization (seed section 2.4): flatten a disk-like triangle
+//! mesh onto the plane, and measure how much the map distorts.
+//!
+//! | module | what it holds | seed / paper |
+//! |---|---|---|
+//! | [`weights`] | one trait, five weight sets: Tutte, mean-value, harmonic, authalic, intrinsic | eq. 2.12-2.16 |
+//! | [`fixed`] | the one fixed-boundary solver for `sum_j w_ij (q_i - q_j) = 0` | eq. 2.13 |
+//! | [`boundary`] | circle (uniform / chord length), square, user-given boundary maps | |
+//! | [`lscm`] | least-squares conformal maps, free boundary | Levy et al. 2002 |
+//! | [`arap`] | as-rigid-as-possible local/global refinement | Liu et al. 2008 |
+//! | [`distortion`] | Jacobian B = P A, singular values, angle / area distortion, Dirichlet energy vs area, torsion, scaling | eq. 2.8-2.11 |
+//! | [`bijectivity`] | boundary self-intersection test (sparse grid) | |
+//! | [`topology`] | disk check with a typed error saying what the mesh is | eq. 2.6-2.7 |
+//! | [`cut`] | cut a closed or multiply-bounded mesh into a disk, with its seam | Erickson-Whittlesey 2005 |
+//! | [`param`] | [`parameterize`] and [`parameterize_cut`], the entry points | |
+//!
+//! ```
+//! use mesh_param::{parameterize, BoundaryMap, Method, Options, Spacing};
+//!
+//! let mesh = mesh_core::shapes::disk(10, 7)?;          // 331 vertices, unit disk
+//! let options = Options {
+//!     method: Method::Harmonic,
+//!     boundary: BoundaryMap::Circle(Spacing::ChordLength),
+//!     ..Default::default()
+//! };
+//! let p = parameterize(&mesh, &options)?;
+//! assert_eq!(p.uv.len(), mesh.vertex_count());
+//! let s = &p.report.summary;
+//! assert!(s.bijective && s.flipped_faces == 0);
+//! // Eq. 2.11: the Dirichlet energy is at least the area, equal iff conformal.
+//! assert!(s.dirichlet_area_ratio >= 1.0 && s.dirichlet_area_ratio < 1.1);
+//! # Ok::<(), mesh_param::ParamError>(())
+//! ```
+//!
+//! Zero-area faces never produce NaN: by default each is weighted as an
+//! equilateral triangle of its mean edge length (uniform weights on that face
+//! only, see [`DegeneratePolicy`]), or refused with
+//! [`ParamError::DegenerateFaces`]. Nothing a user can feed in panics.
 #![deny(missing_docs)]
+
+pub mod arap;
+pub mod bijectivity;
+pub mod boundary;
+pub mod cut;
+pub mod distortion;
+pub mod error;
+pub mod fixed;
+pub mod lscm;
+pub mod param;
+pub mod topology;
+pub mod weights;
+
+pub use arap::Arap;
+pub use boundary::{BoundaryMap, Spacing};
+pub use cut::{cut_to_disk, CutMesh};
+pub use distortion::{distortion, DistortionReport, DistortionSummary, FaceDistortion};
+pub use error::{ParamError, Result};
+pub use fixed::{DegeneratePolicy, FixedBoundarySolver};
+pub use lscm::{lscm, LscmOptions};
+pub use param::{parameterize, parameterize_cut, CutParameterization, Method, Options, Parameterization};
+pub use topology::{require_disk, Topology};
+pub use weights::{Authalic, Harmonic, Intrinsic, MeanValue, Uniform, Weights};
