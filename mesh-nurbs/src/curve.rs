@@ -140,6 +140,19 @@ impl NurbsCurve {
         Self::from_homogeneous(knots, homogeneous)
     }
 
+    /// The same curve with its degree raised by one, exactly (same points for
+    /// the same parameters). Needs clamped knots (end knots of multiplicity
+    /// `p + 1`). Method: split into Bezier pieces by knot insertion (A5.1),
+    /// elevate each piece with `Q_i = i/(p+1) P_{i-1} + (1 - i/(p+1)) P_i` on
+    /// homogeneous points, and join them; interior knots come out with
+    /// multiplicity `p + 1` (no knot removal, so the result is exact but not
+    /// minimal; A5.9 of Piegl & Tiller gives the minimal form).
+    /// Cost O(n p).
+    pub fn elevate_degree(&self) -> Result<Self> {
+        let (knots, homogeneous) = elevate_degree_line(&self.knots, &self.homogeneous)?;
+        Self::from_homogeneous(knots, homogeneous)
+    }
+
     /// The image of the curve under an affine map (NURBS are affinely
     /// invariant: map the control points, keep the weights). Cost O(n).
     pub fn transform(&self, map: &DAffine3) -> Result<Self> {
@@ -215,6 +228,43 @@ pub(crate) fn insert_knot_line(
     Ok((KnotVector::new(p, knots)?, q))
 }
 
+/// Degree elevation by one of a line of homogeneous points on clamped knots
+/// (Bezier decomposition, per-piece elevation, joining).
+pub(crate) fn elevate_degree_line(kv: &KnotVector, pw: &[DVec4]) -> Result<(KnotVector, Vec<DVec4>)> {
+    let p = kv.degree();
+    let t = kv.knots();
+    let (a, b) = kv.domain();
+    if t[0] != a || t[t.len() - 1] != b {
+        return Err(NurbsError::NotClamped { operation: "degree elevation" });
+    }
+    // Bezier decomposition: every interior knot to multiplicity p.
+    let mut knots = kv.clone();
+    let mut line = pw.to_vec();
+    let bp = kv.breakpoints();
+    for &u in &bp[1..bp.len() - 1] {
+        let s = knots.multiplicity(u);
+        if s < p {
+            (knots, line) = insert_knot_line(&knots, &line, u, p - s)?;
+        }
+    }
+    let pieces = bp.len() - 1;
+    let mut out = Vec::with_capacity(pieces * (p + 1) + 1);
+    out.push(line[0]);
+    for piece in line.windows(p + 1).step_by(p) {
+        for i in 1..=p {
+            let alpha = i as f64 / (p + 1) as f64;
+            out.push(piece[i - 1] * alpha + piece[i] * (1.0 - alpha));
+        }
+        out.push(piece[p]);
+    }
+    let mut new_knots = vec![a; p + 2];
+    for &u in &bp[1..bp.len() - 1] {
+        new_knots.extend(std::iter::repeat_n(u, p + 1));
+    }
+    new_knots.extend(std::iter::repeat_n(b, p + 2));
+    Ok((KnotVector::new(p + 1, new_knots)?, out))
+}
+
 /// Span and multiplicity of a knot to insert, or why it cannot be inserted.
 fn check_insertion(kv: &KnotVector, u: f64, times: usize) -> Result<(usize, usize)> {
     let refuse = |reason: String| Err(NurbsError::KnotInsertion { value: u, times, reason });
@@ -286,6 +336,28 @@ mod tests {
         assert!(c.insert_knot(0.4, 3).is_err());
         assert!(c.insert_knot(0.0, 1).is_err());
         assert!(c.insert_knot(f64::NAN, 1).is_err());
+    }
+
+    #[test]
+    fn degree_elevation_keeps_the_curve() {
+        let c = cubic();
+        let mut e = c.elevate_degree().unwrap();
+        for _ in 0..2 {
+            assert_eq!(e.degree(), c.degree() + 1);
+            for s in 0..=50 {
+                let x = s as f64 / 50.0;
+                assert!((c.point(x).unwrap() - e.point(x).unwrap()).length() < 1e-13);
+                assert!((c.derivatives(x, 1).unwrap()[1] - e.derivatives(x, 1).unwrap()[1]).length() < 1e-10);
+            }
+            let twice = e.elevate_degree().unwrap();
+            assert_eq!(twice.degree(), e.degree() + 1);
+            e = twice.clone();
+            if e.degree() == 5 {
+                break;
+            }
+        }
+        let open = NurbsCurve::non_rational(KnotVector::uniform(2, 4).unwrap(), vec![DVec3::ZERO; 4]).unwrap();
+        assert!(matches!(open.elevate_degree(), Err(NurbsError::NotClamped { .. })));
     }
 
     #[test]

@@ -105,6 +105,13 @@ pub enum NurbsError {
         /// Why it was refused.
         reason: String,
     },
+    /// The operation needs clamped knots (first and last knots of multiplicity
+    /// `degree + 1`).
+    #[error("{operation} needs clamped knots (end knots repeated degree + 1 times)")]
+    NotClamped {
+        /// What was attempted.
+        operation: &'static str,
+    },
     /// A shape constructor got a non-finite or out-of-range dimension.
     #[error("invalid shape: {0}")]
     Shape(String),

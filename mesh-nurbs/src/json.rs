@@ -10,7 +10,12 @@
 //!   "knots_v": [0, 0, 1, 1],
 //!   "count_u": 2,
 //!   "count_v": 2,
-//!   "control_points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]],
+//!   "control_points": [
+//!     [0, 0, 0],
+//!     [0, 1, 0],
+//!     [1, 0, 0],
+//!     [1, 1, 1]
+//!   ],
 //!   "weights": [1, 1, 1, 1]
 //! }
 //! ```
@@ -30,6 +35,7 @@ use std::io::{Read, Write};
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use serde_json::ser::{Formatter, PrettyFormatter};
 
 use crate::error::{NurbsError, Result};
 use crate::knots::KnotVector;
@@ -123,14 +129,80 @@ pub fn read_json(reader: impl Read) -> Result<NurbsSurface> {
     serde_json::from_reader::<_, SurfaceDocument>(reader)?.to_surface()
 }
 
-/// Writes a surface as pretty-printed JSON text. Cost O(n).
+/// Writes a surface as JSON text laid out like the module example (one field
+/// per line, one control point per line). Cost O(n).
 pub fn to_json_string(surface: &NurbsSurface) -> Result<String> {
-    Ok(serde_json::to_string_pretty(&SurfaceDocument::from_surface(surface))?)
+    let mut out = Vec::new();
+    write_json(surface, &mut out)?;
+    String::from_utf8(out).map_err(|e| NurbsError::Json(e.to_string()))
 }
 
-/// Writes a surface as pretty-printed JSON to a writer. Cost O(n).
+/// Writes a surface as JSON to a writer, laid out like [`to_json_string`].
+/// Cost O(n).
 pub fn write_json(surface: &NurbsSurface, writer: impl Write) -> Result<()> {
-    Ok(serde_json::to_writer_pretty(writer, &SurfaceDocument::from_surface(surface))?)
+    let mut serializer = serde_json::Serializer::with_formatter(writer, Layout::default());
+    SurfaceDocument::from_surface(surface).serialize(&mut serializer)?;
+    Ok(())
+}
+
+/// Pretty objects, compact arrays, and a line break before each inner array
+/// of an array of arrays (one control point per line).
+#[derive(Default)]
+struct Layout {
+    object: PrettyFormatter<'static>,
+    depth: usize,
+    nested: bool,
+}
+
+impl Formatter for Layout {
+    fn begin_array<W: ?Sized + Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.depth += 1;
+        if self.depth == 2 {
+            self.nested = true;
+            w.write_all(b"\n    ")?;
+        }
+        w.write_all(b"[")
+    }
+
+    fn end_array<W: ?Sized + Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.depth -= 1;
+        if self.depth == 0 && std::mem::take(&mut self.nested) {
+            w.write_all(b"\n  ")?;
+        }
+        w.write_all(b"]")
+    }
+
+    fn begin_array_value<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> std::io::Result<()> {
+        match (first, self.depth) {
+            (true, _) => Ok(()),
+            (false, 1) if self.nested => w.write_all(b","),
+            (false, _) => w.write_all(b", "),
+        }
+    }
+
+    fn end_array_value<W: ?Sized + Write>(&mut self, _w: &mut W) -> std::io::Result<()> {
+        Ok(())
+    }
+
+    fn begin_object<W: ?Sized + Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.object.begin_object(w)
+    }
+
+    fn end_object<W: ?Sized + Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.object.end_object(w)
+    }
+
+    fn begin_object_key<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> std::io::Result<()> {
+        self.object.begin_object_key(w, first)
+    }
+
+    fn begin_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.object.begin_object_value(w)
+    }
+
+    fn end_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> std::io::Result<()> {
+        self.object.end_object_value(w)
+    }
 }
 
 #[cfg(test)]
@@ -146,6 +218,30 @@ mod tests {
         let mut buf = Vec::new();
         write_json(&s, &mut buf).unwrap();
         assert!(read_json(buf.as_slice()).unwrap() == s, "reader round trip");
+    }
+
+    #[test]
+    fn layout_matches_the_documented_example() {
+        let s = shapes::bilinear(DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE).unwrap();
+        let text = to_json_string(&s).unwrap();
+        let expected = r#"{
+  "format": "mesh-nurbs-surface",
+  "version": 1,
+  "degree_u": 1,
+  "degree_v": 1,
+  "knots_u": [0.0, 0.0, 1.0, 1.0],
+  "knots_v": [0.0, 0.0, 1.0, 1.0],
+  "count_u": 2,
+  "count_v": 2,
+  "control_points": [
+    [0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 1.0]
+  ],
+  "weights": [1.0, 1.0, 1.0, 1.0]
+}"#;
+        assert_eq!(text, expected);
     }
 
     #[test]

@@ -8,9 +8,10 @@
 //! - [`knots`]: validated knot vectors, clamped and uniform constructors, span search.
 //! - [`basis`]: `N_{i,k}(u)` by Cox-de Boor, all non-zero functions of a span and
 //!   their derivatives, without allocation.
-//! - [`curve`]: [`NurbsCurve`]: points, derivatives, curvature, knot insertion.
+//! - [`curve`]: [`NurbsCurve`]: points, derivatives, curvature, knot insertion,
+//!   degree elevation.
 //! - [`surface`]: [`NurbsSurface`]: points, first and second partial derivatives,
-//!   normals, knot insertion.
+//!   normals, knot insertion, degree elevation.
 //! - [`frame`]: [`SurfaceFrame`], the differential geometry at a point: `E, F, G`,
 //!   `L, M, N`, `K`, `H`, `k1 >= k2` and principal directions (sign conventions
 //!   are documented there: a sphere with outward normals has `H = +1/r`).
@@ -57,3 +58,8 @@ pub use tessellate::{
 };
 
 pub use glam;
+
+/// The code blocks of README.md, run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

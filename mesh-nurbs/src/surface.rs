@@ -5,7 +5,7 @@
 use glam::{DAffine3, DVec3, DVec4};
 
 use crate::basis::{basis_derivatives, CAP};
-use crate::curve::{cartesian, check_count, homogeneous, insert_knot_line};
+use crate::curve::{cartesian, check_count, elevate_degree_line, homogeneous, insert_knot_line};
 use crate::error::{check_param, NurbsError, Result};
 use crate::knots::KnotVector;
 
@@ -289,34 +289,49 @@ impl NurbsSurface {
     /// direction (Boehm, Piegl & Tiller A5.3): shape and parameterization are
     /// unchanged. Cost O(count_u count_v + times p count_v).
     pub fn insert_knot_u(&self, u: f64, times: usize) -> Result<Self> {
-        let (nu, nv) = (self.count_u(), self.count_v());
-        let mut knots = None;
-        let mut out = vec![DVec4::ZERO; (nu + times) * nv];
-        for j in 0..nv {
-            let column: Vec<DVec4> = (0..nu).map(|i| self.homogeneous[i * nv + j]).collect();
-            let (kv, line) = insert_knot_line(&self.knots_u, &column, u, times)?;
-            for (i, h) in line.into_iter().enumerate() {
-                out[i * nv + j] = h;
-            }
-            knots = Some(kv);
-        }
-        let knots = knots.ok_or(NurbsError::Count { what: "control points along v", expected: 1, found: 0 })?;
-        Self::from_homogeneous(knots, self.knots_v.clone(), out)
+        self.map_columns(|column| insert_knot_line(&self.knots_u, column, u, times))
     }
 
     /// The same surface with the knot `v` inserted `times` times in the `v`
     /// direction (Boehm, Piegl & Tiller A5.3). Cost as [`Self::insert_knot_u`].
     pub fn insert_knot_v(&self, v: f64, times: usize) -> Result<Self> {
-        let nv = self.count_v();
-        let mut knots = None;
-        let mut out = Vec::with_capacity(self.count_u() * (nv + times));
-        for row in self.homogeneous.chunks_exact(nv) {
-            let (kv, line) = insert_knot_line(&self.knots_v, row, v, times)?;
-            out.extend(line);
-            knots = Some(kv);
+        self.map_rows(|row| insert_knot_line(&self.knots_v, row, v, times))
+    }
+
+    /// The same surface with its degree in `u` raised by one, exactly (see
+    /// [`crate::NurbsCurve::elevate_degree`]; needs clamped knots in `u`).
+    /// Cost O(count_u count_v p).
+    pub fn elevate_degree_u(&self) -> Result<Self> {
+        self.map_columns(|column| elevate_degree_line(&self.knots_u, column))
+    }
+
+    /// The same surface with its degree in `v` raised by one, exactly (needs
+    /// clamped knots in `v`). Cost O(count_u count_v q).
+    pub fn elevate_degree_v(&self) -> Result<Self> {
+        self.map_rows(|row| elevate_degree_line(&self.knots_v, row))
+    }
+
+    /// Applies a knot-vector-changing operation to every column (fixed `j`,
+    /// the `u` direction) of the homogeneous net.
+    fn map_columns(&self, op: impl Fn(&[DVec4]) -> Result<(KnotVector, Vec<DVec4>)>) -> Result<Self> {
+        let (nu, nv) = (self.count_u(), self.count_v());
+        let mut lines = Vec::with_capacity(nv);
+        for j in 0..nv {
+            let column: Vec<DVec4> = (0..nu).map(|i| self.homogeneous[i * nv + j]).collect();
+            lines.push(op(&column)?);
         }
-        let knots = knots.ok_or(NurbsError::Count { what: "control points along u", expected: 1, found: 0 })?;
-        Self::from_homogeneous(self.knots_u.clone(), knots, out)
+        let (knots, columns) = split_lines(lines)?;
+        let new_nu = columns[0].len();
+        let out = (0..new_nu * nv).map(|k| columns[k % nv][k / nv]).collect();
+        Self::from_homogeneous(knots, self.knots_v.clone(), out)
+    }
+
+    /// Applies a knot-vector-changing operation to every row (fixed `i`, the
+    /// `v` direction) of the homogeneous net.
+    fn map_rows(&self, op: impl Fn(&[DVec4]) -> Result<(KnotVector, Vec<DVec4>)>) -> Result<Self> {
+        let lines = self.homogeneous.chunks_exact(self.count_v()).map(op).collect::<Result<Vec<_>>>()?;
+        let (knots, rows) = split_lines(lines)?;
+        Self::from_homogeneous(self.knots_u.clone(), knots, rows.concat())
     }
 
     /// The image of the surface under an affine map (map the control points,
@@ -344,6 +359,13 @@ impl NurbsSurface {
     pub(crate) fn nudge(&self, u: f64, v: f64) -> (f64, f64) {
         (nudge_in(self.domain_u(), u), nudge_in(self.domain_v(), v))
     }
+}
+
+/// The common knot vector of lines transformed alike, and the lines.
+fn split_lines(lines: Vec<(KnotVector, Vec<DVec4>)>) -> Result<(KnotVector, Vec<Vec<DVec4>>)> {
+    let knots = lines.first().map(|l| l.0.clone());
+    let knots = knots.ok_or(NurbsError::Count { what: "control point lines", expected: 1, found: 0 })?;
+    Ok((knots, lines.into_iter().map(|l| l.1).collect()))
 }
 
 fn nudge_in((a, b): (f64, f64), t: f64) -> f64 {

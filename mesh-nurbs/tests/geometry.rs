@@ -203,3 +203,19 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn degree_elevation_keeps_surfaces() {
+    let torus = shapes::torus(DVec3::ZERO, 3.0, 1.0).expect("torus");
+    let up = torus.elevate_degree_u().expect("u").elevate_degree_v().expect("v");
+    assert_eq!((up.knots_u().degree(), up.knots_v().degree()), (3, 3));
+    for a in 0..=12 {
+        for b in 0..=12 {
+            let (u, v) = (a as f64 / 12.0, b as f64 / 12.0);
+            let (f, g) =
+                (SurfaceFrame::new(&torus, u, v).expect("frame"), SurfaceFrame::new(&up, u, v).expect("frame"));
+            assert!((f.point() - g.point()).length() < 1e-13);
+            assert!((f.gaussian - g.gaussian).abs() < 1e-10 && (f.mean - g.mean).abs() < 1e-10);
+        }
+    }
+}
