@@ -6,6 +6,7 @@
 mod commands;
 mod input;
 mod output;
+mod render;
 
 use clap::{Parser, Subcommand};
 
@@ -28,6 +29,8 @@ enum Command {
     Clean(commands::clean::Args),
     /// Writes a built-in shape to a mesh file.
     Generate(commands::generate::Args),
+    /// Renders a mesh, optionally coloured by a per-vertex field, to a PNG picture.
+    Render(commands::render::Args),
     /// Runs every analysis on a mesh and writes a JSON report and viewer-ready files.
     Report(commands::report::Args),
 }
@@ -39,6 +42,7 @@ fn main() {
         Command::Convert(args) => commands::convert::run(args),
         Command::Clean(args) => commands::clean::run(args),
         Command::Generate(args) => commands::generate::run(args),
+        Command::Render(args) => commands::render::run(args),
         Command::Report(args) => commands::report::run(args),
     };
     if let Err(e) = result {

@@ -6,10 +6,13 @@
 //! - `cargo xtask bench --mesh PATH [--json OUT] [--runs N]`: times every
 //!   implemented operation on one mesh, single-threaded and with default
 //!   threads, under stable names shared with `../shared/peers/peer_bench.py`.
+//! - `cargo xtask render [--out DIR]`: a gallery of PNG pictures made with
+//!   `mesh render`.
 //! - `cargo xtask publish-check`: packages every publishable crate.
 
 mod bench;
 mod publish_check;
+mod render;
 mod validate;
 
 use clap::{Parser, Subcommand};
@@ -27,6 +30,8 @@ enum Command {
     Validate(validate::Args),
     /// Time every operation on a mesh.
     Bench(bench::Args),
+    /// Render a gallery of PNG pictures.
+    Render(render::Args),
     /// Package every publishable crate in dependency order.
     PublishCheck(publish_check::Args),
 }
@@ -36,6 +41,7 @@ fn main() {
     let result = match &cli.command {
         Command::Validate(args) => validate::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Render(args) => render::run(args),
         Command::PublishCheck(args) => publish_check::run(args),
     };
     if let Err(e) = result {

@@ -4,4 +4,5 @@ pub mod clean;
 pub mod convert;
 pub mod generate;
 pub mod info;
+pub mod render;
 pub mod report;

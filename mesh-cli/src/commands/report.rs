@@ -12,6 +12,7 @@ use serde_json::{json, Map, Value};
 use super::info::Info;
 use crate::input::InputArgs;
 use crate::output::{check_not_input, write_json, CliResult};
+use crate::render::{render_png, RenderOptions};
 
 /// Arguments of `mesh report`.
 #[derive(Debug, clap::Args)]
@@ -24,6 +25,9 @@ pub struct Args {
     /// Dihedral angle, in degrees, above which an edge is a feature edge.
     #[arg(long, default_value_t = 30.0)]
     feature_angle: f64,
+    /// The axis pointing up in the pictures: x, y or z.
+    #[arg(long, default_value = "z")]
+    up: String,
 }
 
 /// Collects sections, timings and written files.
@@ -80,6 +84,8 @@ pub fn run(args: &Args) -> CliResult<()> {
     let view = MeshView::new(mesh).with_normals(&normals).with_scalar("voronoi_area", &mass);
     mesh_io::write(&ply, view, &mesh_io::WriteOptions::default())?;
     write_feature_edges(&report.file("feature_edges.obj"), mesh, &features)?;
+    let picture = RenderOptions { up: super::render::axis(&args.up)?, ..RenderOptions::default() };
+    render_png(mesh, None, &report.file("mesh.png"), &picture)?;
 
     let summary = json!({
         "input": args.input.describe(),

@@ -1,0 +1,74 @@
+//! `mesh render`: a PNG picture of a mesh, optionally coloured by one of its
+//! per-vertex fields (a PLY property such as `mean` or `distance`).
+
+use std::path::PathBuf;
+
+use crate::input::InputArgs;
+use crate::output::{check_not_input, ensure_parent, CliResult};
+use crate::render::{render_png, RenderOptions};
+
+/// Arguments of `mesh render`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    input: InputArgs,
+    /// Output PNG file.
+    #[arg(long)]
+    out: PathBuf,
+    /// Per-vertex field of the input file to colour by (e.g. `mean`, `distance`).
+    #[arg(long)]
+    field: Option<String>,
+    /// Picture width in pixels.
+    #[arg(long, default_value_t = 800)]
+    width: u32,
+    /// Picture height in pixels.
+    #[arg(long, default_value_t = 600)]
+    height: u32,
+    /// Camera azimuth in degrees.
+    #[arg(long, default_value_t = -60.0, allow_negative_numbers = true)]
+    azimuth: f64,
+    /// Camera elevation in degrees.
+    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+    elevation: f64,
+    /// The axis pointing up in the picture: x, y or z.
+    #[arg(long, default_value = "z")]
+    up: String,
+}
+
+/// The unit vector of an axis name.
+pub fn axis(name: &str) -> CliResult<mesh_core::glam::DVec3> {
+    use mesh_core::glam::DVec3;
+    match name {
+        "x" => Ok(DVec3::X),
+        "y" => Ok(DVec3::Y),
+        "z" => Ok(DVec3::Z),
+        _ => Err(format!("--up must be x, y or z, not `{name}`").into()),
+    }
+}
+
+/// Runs `mesh render`.
+pub fn run(args: &Args) -> CliResult<()> {
+    check_not_input(&args.out, args.input.path(), false)?;
+    let data = args.input.load()?;
+    let scalar = match &args.field {
+        Some(name) => Some(data.scalar(name).ok_or_else(|| {
+            let known: Vec<&str> = data.scalars.iter().map(|(n, _)| n.as_str()).collect();
+            format!("the input has no per-vertex field `{name}` (it has: {})", known.join(", "))
+        })?),
+        None => None,
+    };
+    if !(args.azimuth.is_finite() && args.elevation.is_finite()) {
+        return Err("camera angles must be finite".into());
+    }
+    let options = RenderOptions {
+        width: args.width,
+        height: args.height,
+        azimuth: args.azimuth,
+        elevation: args.elevation,
+        up: axis(&args.up)?,
+    };
+    ensure_parent(&args.out)?;
+    render_png(&data.mesh, scalar, &args.out, &options)?;
+    eprintln!("wrote {}", args.out.display());
+    Ok(())
+}
