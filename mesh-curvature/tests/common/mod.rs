@@ -1,0 +1,211 @@
+//! Shared helpers of the integration tests: analytic surfaces with their
+//! exact curvature per vertex, a minimal reader for the OFF/OBJ files of
+//! `../shared/data`, and error measures.
+#![allow(dead_code)]
+
+use std::f64::consts::TAU;
+use std::path::{Path, PathBuf};
+
+use mesh_core::glam::DVec3;
+use mesh_core::{shapes, TriMesh};
+use mesh_curvature::CurvatureTensor;
+
+/// Exact curvature per vertex: principal curvatures, the k1 direction where
+/// it is defined (not at umbilics), and which vertices to check.
+pub struct Truth {
+    pub k1: Vec<f64>,
+    pub k2: Vec<f64>,
+    pub d1: Vec<Option<DVec3>>,
+    pub check: Vec<bool>,
+}
+
+/// Unit icosphere: k1 = k2 = 1 everywhere.
+pub fn sphere(level: u32) -> (TriMesh, Truth) {
+    let m = shapes::icosphere(level).unwrap();
+    let n = m.vertex_count();
+    (m, Truth { k1: vec![1.0; n], k2: vec![1.0; n], d1: vec![None; n], check: vec![true; n] })
+}
+
+/// Torus R = 2, r = 0.5 on an `nu` x `nv` grid, vertex `i nv + j` at
+/// u = 2 pi i / nu, v = 2 pi j / nv (documented by mesh-core): k1 = 1 / r
+/// around the tube, k2 = cos v / (R + r cos v) along it.
+pub fn torus(nu: usize, nv: usize) -> (TriMesh, Truth) {
+    let (big, r) = (2.0, 0.5);
+    let m = shapes::torus(big, r, nu, nv).unwrap();
+    let mut t = Truth { k1: vec![], k2: vec![], d1: vec![], check: vec![] };
+    for i in 0..nu {
+        let u = TAU * i as f64 / nu as f64;
+        for j in 0..nv {
+            let v = TAU * j as f64 / nv as f64;
+            t.k1.push(1.0 / r);
+            t.k2.push(v.cos() / (big + r * v.cos()));
+            t.d1.push(Some(DVec3::new(-v.sin() * u.cos(), -v.sin() * u.sin(), v.cos())));
+            t.check.push(true);
+        }
+    }
+    (m, t)
+}
+
+/// Open unit cylinder of height 2: k1 = 1 around, k2 = 0 along the axis;
+/// checked on the vertices at least `margin` rings from either boundary.
+pub fn cylinder(around: usize, along: usize, margin: usize) -> (TriMesh, Truth) {
+    let m = shapes::cylinder(1.0, 2.0, around, along).unwrap();
+    let mut t = Truth { k1: vec![], k2: vec![], d1: vec![], check: vec![] };
+    for i in 0..around {
+        let a = TAU * i as f64 / around as f64;
+        for j in 0..=along {
+            t.k1.push(1.0);
+            t.k2.push(0.0);
+            t.d1.push(Some(DVec3::new(-a.sin(), a.cos(), 0.0)));
+            t.check.push(j >= margin && j + margin <= along);
+        }
+    }
+    (m, t)
+}
+
+/// Ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 = 1 from a scaled icosphere: an
+/// irregular, anisotropic triangulation with exact K and H (principal
+/// curvatures from them).
+pub fn ellipsoid(level: u32, [a, b, c]: [f64; 3]) -> (TriMesh, Truth) {
+    let s = shapes::icosphere(level).unwrap();
+    let p: Vec<DVec3> = s.positions().iter().map(|p| DVec3::new(a * p.x, b * p.y, c * p.z)).collect();
+    let m = TriMesh::new(p.clone(), s.faces().to_vec()).unwrap();
+    let mut t = Truth { k1: vec![], k2: vec![], d1: vec![], check: vec![] };
+    for q in &p {
+        let g = DVec3::new(q.x / (a * a), q.y / (b * b), q.z / (c * c));
+        let g2 = g.length_squared();
+        let k = 1.0 / ((a * b * c).powi(2) * g2 * g2);
+        let h = (a * a + b * b + c * c - q.length_squared()) / (2.0 * (a * b * c).powi(2) * g2.powf(1.5));
+        let disc = (h * h - k).max(0.0).sqrt();
+        t.k1.push(h + disc);
+        t.k2.push(h - disc);
+        t.d1.push(None);
+        t.check.push(true);
+    }
+    (m, t)
+}
+
+/// Icosphere whose vertices are moved tangentially by up to `amount` of the
+/// edge length and put back on the unit sphere (deterministic).
+pub fn jittered_sphere(level: u32, amount: f64, seed: u64) -> (TriMesh, Truth) {
+    let (m, t) = sphere(level);
+    let h = 1.1 / 2f64.powi(level as i32);
+    let mut state = seed;
+    let mut rnd = || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    };
+    let p = m.positions().iter().map(|p| (*p + amount * h * DVec3::new(rnd(), rnd(), rnd())).normalize()).collect();
+    (TriMesh::new(p, m.faces().to_vec()).unwrap(), t)
+}
+
+/// Largest errors of a tensor against the truth, over the checked vertices.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Errors {
+    pub k1: f64,
+    pub k2: f64,
+    pub gaussian: f64,
+    pub mean: f64,
+    /// Largest angle between d1 and the true direction, in degrees.
+    pub degrees: f64,
+}
+
+pub fn errors(t: &CurvatureTensor, truth: &Truth) -> Errors {
+    let mut e = Errors::default();
+    for i in 0..t.len() {
+        if !truth.check[i] {
+            continue;
+        }
+        e.k1 = e.k1.max((t.k1[i] - truth.k1[i]).abs());
+        e.k2 = e.k2.max((t.k2[i] - truth.k2[i]).abs());
+        e.gaussian = e.gaussian.max((t.k1[i] * t.k2[i] - truth.k1[i] * truth.k2[i]).abs());
+        e.mean = e.mean.max((0.5 * (t.k1[i] + t.k2[i]) - 0.5 * (truth.k1[i] + truth.k2[i])).abs());
+        if let Some(d) = truth.d1[i] {
+            e.degrees = e.degrees.max(t.d1[i].dot(d).abs().min(1.0).acos().to_degrees());
+        }
+    }
+    e
+}
+
+/// Observed convergence order between two errors at mesh sizes h and h / ratio.
+pub fn order(coarse: f64, fine: f64, ratio: f64) -> f64 {
+    (coarse / fine).ln() / ratio.ln()
+}
+
+/// `../shared/data` next to the workspace, when present.
+pub fn data_dir() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        println!("skipped: {} is absent", dir.display());
+        None
+    }
+}
+
+/// Every mesh of `../shared/data` (name, mesh), read with [`read_mesh`].
+pub fn data_meshes() -> Vec<(String, TriMesh)> {
+    let Some(dir) = data_dir() else { return Vec::new() };
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("off" | "obj")))
+        .collect();
+    names.sort();
+    names
+        .into_iter()
+        .map(|p| {
+            let mesh = read_mesh(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
+        })
+        .collect()
+}
+
+/// A minimal reader for the OFF and OBJ files of the test data (triangles
+/// only, polygons fanned), so the tests do not depend on another crate.
+pub fn read_mesh(path: &Path) -> Result<TriMesh, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    let fan = |poly: &[u32], faces: &mut Vec<[u32; 3]>| {
+        for k in 1..poly.len().saturating_sub(1) {
+            faces.push([poly[0], poly[k], poly[k + 1]]);
+        }
+    };
+    if path.extension().and_then(|e| e.to_str()) == Some("obj") {
+        for line in text.lines() {
+            let mut it = line.split_whitespace();
+            match it.next() {
+                Some("v") => {
+                    let c: Vec<f64> = it.take(3).map(|x| x.parse().unwrap()).collect();
+                    positions.push(DVec3::new(c[0], c[1], c[2]));
+                }
+                Some("f") => {
+                    let poly: Vec<u32> = it.map(|x| x.split('/').next().unwrap().parse::<u32>().unwrap() - 1).collect();
+                    fan(&poly, &mut faces);
+                }
+                _ => {}
+            }
+        }
+    } else {
+        let mut tokens = text
+            .lines()
+            .map(|l| l.split('#').next().unwrap_or(""))
+            .flat_map(|l| l.split_whitespace())
+            .skip_while(|t| t.starts_with("OFF"));
+        let mut next = || tokens.next().ok_or("truncated OFF").map(|s| s.to_string());
+        let nv: usize = next()?.parse().map_err(|_| "bad count")?;
+        let nf: usize = next()?.parse().map_err(|_| "bad count")?;
+        let _ne = next()?;
+        for _ in 0..nv {
+            let c: Vec<f64> = (0..3).map(|_| next().unwrap().parse().unwrap()).collect();
+            positions.push(DVec3::new(c[0], c[1], c[2]));
+        }
+        for _ in 0..nf {
+            let k: usize = next()?.parse().map_err(|_| "bad polygon")?;
+            let poly: Vec<u32> = (0..k).map(|_| next().unwrap().parse().unwrap()).collect();
+            fan(&poly, &mut faces);
+        }
+    }
+    TriMesh::new(positions, faces).map_err(|e| e.to_string())
+}
