@@ -16,10 +16,11 @@
 //! levels J. Cost O(F) per level and hypothesis, at most four hypotheses per
 //! connected component.
 
-use mesh_core::{Connectivity, HalfedgeId, MeshError, TriMesh, VertexId, VertexKind};
+use mesh_core::{MeshError, TriMesh, VertexId};
 
 use crate::error::{Result, WaveletError};
 use crate::hierarchy::Hierarchy;
+use crate::topology::{manifold_topology, Kind, Topology};
 
 /// Options of [`detect`].
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -48,21 +49,22 @@ pub fn detect(mesh: &TriMesh, options: &DetectOptions) -> Result<Hierarchy> {
     if mesh.face_count() == 0 {
         return Err(MeshError::Empty.into());
     }
-    let conn = mesh.manifold_connectivity()?;
-    if let Some(v) = conn.vertex_kinds().iter().position(|k| *k == VertexKind::Isolated) {
+    let topo = manifold_topology(mesh.vertex_count(), mesh.faces())?;
+    if let Some(v) = (0..mesh.vertex_count() as u32).find(|&v| topo.kind(v) == Kind::Isolated) {
         return Err(WaveletError::NoSubdivisionConnectivity {
-            reason: format!("vertex {} is referenced by no face", VertexId::new(v)),
+            reason: format!("vertex {} is referenced by no face", VertexId(v)),
         });
     }
     let mut steps: Vec<Reversal> = Vec::new();
     let mut failure = String::new();
+    let mut current = topo;
     while steps.len() < options.max_levels {
-        let result = match steps.last() {
-            None => reverse(conn, mesh.faces()),
-            Some(r) => reverse(&Connectivity::new(r.evens.len(), &r.coarse_faces), &r.coarse_faces),
-        };
-        match result {
-            Ok(r) => steps.push(r),
+        let faces = steps.last().map_or(mesh.faces(), |r| &r.coarse_faces[..]);
+        match reverse(&current, faces) {
+            Ok((r, coarse)) => {
+                steps.push(r);
+                current = coarse;
+            }
             Err(reason) => {
                 failure = reason;
                 break;
@@ -94,7 +96,7 @@ const ODD: u8 = 2;
 
 /// The grouping of faces into quadruples, grown from seeds.
 struct Grouping<'a> {
-    conn: &'a Connectivity,
+    topo: &'a Topology,
     /// Per face: `4 q + k` for corner k of group q, `4 q + 3` for its centre.
     role: Vec<u32>,
     label: Vec<u8>,
@@ -107,11 +109,11 @@ struct Grouping<'a> {
 }
 
 impl<'a> Grouping<'a> {
-    fn new(conn: &'a Connectivity) -> Self {
+    fn new(topo: &'a Topology) -> Self {
         Self {
-            conn,
-            role: vec![UNSET; conn.face_count()],
-            label: vec![0; conn.vertex_count()],
+            topo,
+            role: vec![UNSET; topo.face_count()],
+            label: vec![0; topo.vertex_count()],
             groups: Vec::new(),
             touched_faces: Vec::new(),
             touched_vertices: Vec::new(),
@@ -119,15 +121,15 @@ impl<'a> Grouping<'a> {
         }
     }
 
-    fn set_label(&mut self, v: VertexId, label: u8) -> Result<(), String> {
-        match self.label[v.idx()] {
+    fn set_label(&mut self, v: u32, label: u8) -> Result<(), String> {
+        match self.label[v as usize] {
             0 => {
-                self.label[v.idx()] = label;
-                self.touched_vertices.push(v.0);
+                self.label[v as usize] = label;
+                self.touched_vertices.push(v);
                 Ok(())
             }
             l if l == label => Ok(()),
-            _ => Err(format!("vertex {v} would be both a vertex of the coarse mesh and an edge midpoint")),
+            _ => Err(format!("vertex v{v} would be both a vertex of the coarse mesh and an edge midpoint")),
         }
     }
 
@@ -167,7 +169,7 @@ impl<'a> Grouping<'a> {
     }
 
     fn grow_inner(&mut self, seed: u32) -> Result<(), String> {
-        let conn = self.conn;
+        let topo = self.topo;
         self.queue.clear();
         self.queue.push(seed);
         while let Some(t) = self.queue.pop() {
@@ -180,24 +182,24 @@ impl<'a> Grouping<'a> {
             self.set_role(t, 4 * q + 3)?;
             let mut evens = [0u32; 3];
             for k in 0..3 {
-                let h = HalfedgeId::of_corner(mesh_core::FaceId(t), k);
-                self.set_label(conn.origin(h), ODD)?;
-                let tw = conn.twin(h).ok_or_else(|| format!("central face f{t} would touch the boundary"))?;
-                self.set_role(tw.face().0, 4 * q + k as u32)?;
-                let e = conn.opposite_vertex(tw);
+                let h = 3 * t + k;
+                self.set_label(topo.origin(h), ODD)?;
+                let tw = topo.twin(h).ok_or_else(|| format!("central face f{t} would touch the boundary"))?;
+                self.set_role(tw / 3, 4 * q + k)?;
+                let e = topo.opposite(tw);
                 self.set_label(e, EVEN)?;
-                evens[k] = e.0;
+                evens[k as usize] = e;
                 // The faces across the two edges at the even vertex are corners
                 // of neighbouring groups; their central faces are across their
                 // edge that avoids the even vertex.
-                for g in [tw.next(), tw.prev()] {
-                    if let Some(g2) = conn.twin(g) {
-                        let inner = if conn.origin(g2) == e { g2.next() } else { g2.prev() };
-                        let ct = conn.twin(inner).ok_or_else(|| {
-                            format!("corner face {} would touch the boundary with an inner edge", g2.face())
+                for g in [Topology::next(tw), Topology::prev(tw)] {
+                    if let Some(g2) = topo.twin(g) {
+                        let inner = if topo.origin(g2) == e { Topology::next(g2) } else { Topology::prev(g2) };
+                        let ct = topo.twin(inner).ok_or_else(|| {
+                            format!("corner face f{} would touch the boundary with an inner edge", g2 / 3)
                         })?;
-                        if self.role[ct.face().idx()] == UNSET {
-                            self.queue.push(ct.face().0);
+                        if self.role[(ct / 3) as usize] == UNSET {
+                            self.queue.push(ct / 3);
                         }
                     }
                 }
@@ -210,57 +212,53 @@ impl<'a> Grouping<'a> {
 
 /// `true` for a vertex that cannot be an edge midpoint of a 4-to-1 split
 /// (interior valence other than 6, boundary valence other than 4).
-fn must_be_even(conn: &Connectivity, v: VertexId) -> bool {
-    match conn.vertex_kind(v) {
-        VertexKind::Interior => conn.valence(v) != 6,
-        VertexKind::Boundary => conn.valence(v) != 4,
-        _ => true,
+fn must_be_even(topo: &Topology, v: u32) -> bool {
+    match topo.kind(v) {
+        Kind::Interior => topo.valence(v) != 6,
+        Kind::Boundary => topo.valence(v) != 4,
+        Kind::Isolated => false,
     }
 }
 
-/// Reverses one 4-to-1 split of the manifold mesh `faces`, or says why not.
-fn reverse(conn: &Connectivity, faces: &[[u32; 3]]) -> Result<Reversal, String> {
+/// Reverses one 4-to-1 split of the manifold mesh `faces` (with topology
+/// `topo`), giving the coarse mesh and its topology, or says why not.
+fn reverse(topo: &Topology, faces: &[[u32; 3]]) -> Result<(Reversal, Topology), String> {
     let nf = faces.len();
     if nf % 4 != 0 {
         return Err(format!("{nf} faces is not a multiple of 4"));
     }
-    if !conn.is_manifold() {
-        return Err("the coarser mesh would not be manifold".into());
-    }
-    let comps = conn.components();
-    let mut forced = vec![u32::MAX; comps.count];
-    let mut comp_faces = vec![0usize; comps.count];
-    for v in 0..conn.vertex_count() {
-        let c = comps.vertex_component[v];
-        if c != u32::MAX && forced[c as usize] == u32::MAX && must_be_even(conn, VertexId::new(v)) {
-            forced[c as usize] = v as u32;
-        }
-    }
-    for &c in &comps.face_component {
+    let (face_comp, count) = topo.face_components();
+    let mut forced = vec![u32::MAX; count];
+    let mut comp_faces = vec![0usize; count];
+    for &c in &face_comp {
         comp_faces[c as usize] += 1;
     }
-    let mut grouping = Grouping::new(conn);
+    for v in 0..topo.vertex_count() as u32 {
+        if must_be_even(topo, v) {
+            let c = face_comp[(topo.out(v)[0] / 3) as usize] as usize;
+            if forced[c] == u32::MAX {
+                forced[c] = v;
+            }
+        }
+    }
+    let mut grouping = Grouping::new(topo);
     for f in 0..nf as u32 {
         if grouping.role[f as usize] != UNSET {
             continue;
         }
-        let c = comps.face_component[f as usize] as usize;
+        let c = face_comp[f as usize] as usize;
         let hypotheses: Vec<u32> = match forced[c] {
             u32::MAX => {
                 let mut h = vec![f];
-                h.extend(
-                    (0..3)
-                        .filter_map(|k| conn.twin(HalfedgeId::of_corner(mesh_core::FaceId(f), k)))
-                        .map(|t| t.face().0),
-                );
+                h.extend((0..3).filter_map(|k| topo.twin(3 * f + k)).map(|t| t / 3));
                 h
             }
             v => {
                 // v is even: its first face is a corner; the centre is across
                 // the edge opposite v.
-                let h = conn.outgoing(VertexId(v))[0];
-                match conn.twin(h.next()) {
-                    Some(t) => vec![t.face().0],
+                let h = topo.out(v)[0];
+                match topo.twin(Topology::next(h)) {
+                    Some(t) => vec![t / 3],
                     None => return Err(format!("vertex v{v} must be even but its face has a boundary inner edge")),
                 }
             }
@@ -285,12 +283,12 @@ fn reverse(conn: &Connectivity, faces: &[[u32; 3]]) -> Result<Reversal, String> 
             return Err(last);
         }
     }
-    build_reversal(conn, grouping)
+    build_reversal(topo, grouping)
 }
 
 /// The coarse mesh of a complete grouping, after the global checks.
-fn build_reversal(conn: &Connectivity, g: Grouping<'_>) -> Result<Reversal, String> {
-    let n = conn.vertex_count();
+fn build_reversal(topo: &Topology, g: Grouping<'_>) -> Result<(Reversal, Topology), String> {
+    let n = topo.vertex_count();
     let mut coarse_of = vec![UNSET; n];
     let mut evens = Vec::new();
     for v in 0..n {
@@ -310,7 +308,7 @@ fn build_reversal(conn: &Connectivity, g: Grouping<'_>) -> Result<Reversal, Stri
         }
         coarse_faces.push([ca, cb, cc]);
         for (k, edge) in [[ca, cb], [cb, cc], [cc, ca]].into_iter().enumerate() {
-            let m = conn.origin(HalfedgeId::of_corner(mesh_core::FaceId(t), k)).idx();
+            let m = topo.origin(3 * t + k as u32) as usize;
             let key = [edge[0].min(edge[1]), edge[0].max(edge[1])];
             match parent[m] {
                 [UNSET, _] => parent[m] = key,
@@ -319,10 +317,7 @@ fn build_reversal(conn: &Connectivity, g: Grouping<'_>) -> Result<Reversal, Stri
             }
         }
     }
-    let coarse = Connectivity::new(evens.len(), &coarse_faces);
-    if !coarse.is_manifold() {
-        return Err(format!("the coarser mesh would not be manifold: {}", coarse.non_manifold_report()));
-    }
+    let coarse = Topology::new(evens.len(), &coarse_faces).map_err(|_| "the coarser mesh would not be manifold")?;
     let odd = n - evens.len();
     if coarse.edge_count() != odd {
         return Err(format!("{odd} edge midpoints for {} coarse edges", coarse.edge_count()));
@@ -333,10 +328,12 @@ fn build_reversal(conn: &Connectivity, g: Grouping<'_>) -> Result<Reversal, Stri
     if keys.windows(2).any(|w| w[0] == w[1]) || keys.first().is_some_and(|k| k[0] == UNSET) {
         return Err("two edge midpoints would split the same coarse edge".into());
     }
-    Ok(Reversal { evens, coarse_of, parent, coarse_faces })
+    Ok((Reversal { evens, coarse_of, parent, coarse_faces }, coarse))
 }
 
-/// Hierarchical numbering from the reversals (finest first).
+/// Hierarchical numbering from the reversals (finest first): the numbering
+/// [`Hierarchy::from_base`] gives the detected base mesh, odd vertices of
+/// each level in the sorted order of their parent edges.
 fn assemble(mesh: &TriMesh, steps: &[Reversal]) -> Result<Hierarchy> {
     let levels = steps.len();
     let base = &steps[levels - 1];
@@ -352,20 +349,22 @@ fn assemble(mesh: &TriMesh, steps: &[Reversal]) -> Result<Hierarchy> {
         let r = &steps[levels - 1 - j];
         let fine_n = r.coarse_of.len();
         let mut next: Vec<u32> = hier_to_level.iter().map(|&c| r.evens[c as usize]).collect();
-        let mut level_parents = Vec::with_capacity(fine_n - next.len());
-        for v in 0..fine_n {
-            if r.coarse_of[v] == UNSET {
-                next.push(v as u32);
-                level_parents.push(r.parent[v].map(|c| level_to_hier[c as usize]));
-            }
-        }
+        let mut odd: Vec<([u32; 2], u32)> = (0..fine_n as u32)
+            .filter(|&v| r.coarse_of[v as usize] == UNSET)
+            .map(|v| {
+                let [a, b] = r.parent[v as usize].map(|c| level_to_hier[c as usize]);
+                ([a.min(b), a.max(b)], v)
+            })
+            .collect();
+        odd.sort_unstable();
+        next.extend(odd.iter().map(|o| o.1));
+        parents.push(odd.into_iter().map(|o| o.0).collect());
         let mut inverse = vec![0u32; fine_n];
         for (h, &v) in next.iter().enumerate() {
             inverse[v as usize] = h as u32;
         }
         let fine_faces: &[[u32; 3]] = if j + 1 == levels { mesh.faces() } else { &steps[levels - 2 - j].coarse_faces };
         faces.push(fine_faces.iter().map(|f| f.map(|v| inverse[v as usize])).collect());
-        parents.push(level_parents);
         counts.push(fine_n);
         hier_to_level = next;
         level_to_hier = inverse;

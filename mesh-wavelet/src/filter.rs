@@ -18,12 +18,12 @@
 use std::ops::{Add, Mul, Sub};
 
 use glam::DVec3;
-use mesh_core::Connectivity;
 
 use crate::error::{Result, WaveletError};
 use crate::hierarchy::Hierarchy;
 use crate::rules::{self, find_edge, Scratch};
 use crate::scheme::{Scheme, WaveletKind};
+use crate::topology::Topology;
 use crate::update::{update_weights, UpdateScratch};
 
 /// What the filter banks transform: `f64` scalar functions or `DVec3`
@@ -77,41 +77,38 @@ pub struct LevelFilter {
 }
 
 impl LevelFilter {
-    /// Builds the steps of one level from the connectivity of K^j (manifold)
-    /// and the parent edges of the odd vertices. Cost O(n_{j+1}).
-    pub(crate) fn new(conn: &Connectivity, parents: &[[u32; 2]], scheme: Scheme, kind: WaveletKind) -> Result<Self> {
-        conn.require_manifold()?;
-        let coarse = conn.vertex_count();
+    /// Builds the steps of one level from the topology of K^j and the parent
+    /// edges of the odd vertices. Cost O(n_{j+1}).
+    pub(crate) fn new(topo: &Topology, parents: &[[u32; 2]], scheme: Scheme, kind: WaveletKind) -> Result<Self> {
+        let coarse = topo.vertex_count();
         let odd = parents.len();
         let mut predict = Rows::with_capacity(odd, 4 * odd);
         let mut update = (kind == WaveletKind::Lifted).then(|| Rows::with_capacity(odd, 4 * odd));
         let loop_even: Vec<(f64, f64, f64)> = match scheme {
-            Scheme::Loop => (0..coarse as u32).map(|v| rules::loop_even_lifting(conn, v)).collect(),
+            Scheme::Loop => (0..coarse as u32).map(|v| rules::loop_even_lifting(topo, v)).collect(),
             _ => Vec::new(),
         };
         let mut smooth = (scheme == Scheme::Loop)
             .then(|| (loop_even.iter().map(|t| t.0).collect::<Vec<_>>(), Rows::with_capacity(odd, 2 * odd)));
         let mut scratch = Scratch::default();
-        let mut update_scratch = UpdateScratch::default();
+        let mut update_scratch = UpdateScratch::new(coarse);
         let mut row = Vec::with_capacity(16);
         let mut opposite = Vec::with_capacity(2);
         for (i, &[a, b]) in parents.iter().enumerate() {
-            let e = find_edge(conn, a, b, i).ok_or_else(|| {
+            let e = find_edge(topo, a, b, i).ok_or_else(|| {
                 WaveletError::Dimension(format!("odd vertex {} splits ({a}, {b}), which is not an edge", coarse + i))
             })?;
-            let halfedges = conn.edge_halfedges(e);
-            opposite.clear();
-            opposite.extend(halfedges.iter().map(|&h| conn.opposite_vertex(h).0));
+            topo.edge_opposites(e, &mut opposite);
             row.clear();
-            rules::odd_mask(conn, scheme, a, b, &opposite, &mut scratch, &mut row);
+            rules::odd_mask(topo, scheme, a, b, &opposite, &mut scratch, &mut row);
             predict.push_row(&row);
             if let Some(u) = &mut update {
                 row.clear();
-                update_weights(conn, a, b, &opposite, &mut update_scratch, &mut row);
+                update_weights(topo, a, b, &opposite, &mut update_scratch, &mut row);
                 u.push_row(&row);
             }
             if let Some((_, g)) = &mut smooth {
-                let boundary = halfedges.len() == 1;
+                let boundary = opposite.len() == 1;
                 row.clear();
                 for v in [a, b] {
                     let (_, inner, outer) = loop_even[v as usize];
@@ -210,11 +207,11 @@ pub struct FilterBank {
 
 impl FilterBank {
     /// Builds the lifting steps of all levels. Every K^j below the finest
-    /// must be an oriented manifold ([`MeshError::NonManifold`] otherwise).
-    /// Cost O(n_J).
+    /// must be an oriented manifold ([`mesh_core::MeshError::NonManifold`]
+    /// otherwise). Cost O(n_J).
     pub fn new(hierarchy: &Hierarchy, scheme: Scheme, kind: WaveletKind) -> Result<Self> {
         let levels = (0..hierarchy.levels())
-            .map(|j| LevelFilter::new(hierarchy.connectivity(j), hierarchy.parents(j), scheme, kind))
+            .map(|j| LevelFilter::new(hierarchy.topology(j)?, hierarchy.parents(j), scheme, kind))
             .collect::<Result<Vec<_>>>()?;
         Ok(Self { scheme, kind, levels })
     }

@@ -13,21 +13,21 @@
 
 use std::sync::OnceLock;
 
-use mesh_core::{Connectivity, MeshError};
+use mesh_core::MeshError;
 
 use crate::error::{Result, WaveletError};
+use crate::topology::{manifold_topology, Topology};
 
 /// Largest face count a hierarchy may reach (about 1.3e8 triangles).
 pub const MAX_FACES: usize = 1 << 27;
 
 /// The topology of K^0..K^J with hierarchical vertex numbering.
-#[derive(Debug)]
 pub struct Hierarchy {
     counts: Vec<usize>,
     faces: Vec<Vec<[u32; 3]>>,
     parents: Vec<Vec<[u32; 2]>>,
     to_input: Option<Vec<u32>>,
-    connectivity: Vec<OnceLock<Connectivity>>,
+    topology: Vec<OnceLock<Topology>>,
 }
 
 impl Hierarchy {
@@ -72,12 +72,12 @@ impl Hierarchy {
                 return Err(WaveletError::Dimension("the input order is not a permutation".into()));
             }
         }
-        let connectivity = (0..levels).map(|_| OnceLock::new()).collect();
-        Ok(Self { counts, faces, parents, to_input, connectivity })
+        let topology = (0..levels).map(|_| OnceLock::new()).collect();
+        Ok(Self { counts, faces, parents, to_input, topology })
     }
 
-    /// Splits the base mesh K^0 (`vertex_count` vertices, `faces`) `levels`
-    /// times with the vertex and face order of
+    /// Splits the base mesh K^0 (`vertex_count` vertices, `faces`, an oriented
+    /// manifold) `levels` times with the vertex and face order of
     /// [`mesh_core::shapes::midpoint_subdivide`]. Cost O(4^levels F_0).
     pub fn from_base(vertex_count: usize, faces: &[[u32; 3]], levels: usize) -> Result<Self> {
         if faces.is_empty() {
@@ -87,18 +87,18 @@ impl Hierarchy {
         let mut counts = vec![vertex_count];
         let mut all_faces = vec![faces.to_vec()];
         let mut parents = Vec::with_capacity(levels);
-        let mut connectivity = Vec::with_capacity(levels);
+        let mut topology = Vec::with_capacity(levels);
         for j in 0..levels {
-            let conn = Connectivity::new(counts[j], &all_faces[j]);
-            let fine = split_faces(&conn, &all_faces[j], counts[j] as u32);
-            parents.push(conn.edges().iter().map(|e| [e[0].0, e[1].0]).collect::<Vec<_>>());
-            counts.push(counts[j] + conn.edge_count());
+            let topo = manifold_topology(counts[j], &all_faces[j])?;
+            let fine = split_faces(&topo, &all_faces[j], counts[j] as u32);
+            parents.push(topo.edges().to_vec());
+            counts.push(counts[j] + topo.edge_count());
             all_faces.push(fine);
             let cell = OnceLock::new();
-            let _ = cell.set(conn);
-            connectivity.push(cell);
+            let _ = cell.set(topo);
+            topology.push(cell);
         }
-        Ok(Self { counts, faces: all_faces, parents, to_input: None, connectivity })
+        Ok(Self { counts, faces: all_faces, parents, to_input: None, topology })
     }
 
     /// The finest level J (number of 4-to-1 splits above the base mesh).
@@ -122,9 +122,14 @@ impl Hierarchy {
         &self.parents[level]
     }
 
-    /// Connectivity of K^j for `j < J`, built on first use in O(F_j) and cached.
-    pub fn connectivity(&self, level: usize) -> &Connectivity {
-        self.connectivity[level].get_or_init(|| Connectivity::new(self.counts[level], &self.faces[level]))
+    /// Half-edge topology of K^j for `j < J`, built on first use in O(F_j)
+    /// and cached; an error if K^j is not an oriented manifold.
+    pub(crate) fn topology(&self, level: usize) -> Result<&Topology> {
+        let cell = &self.topology[level];
+        if cell.get().is_none() {
+            let _ = cell.set(manifold_topology(self.counts[level], &self.faces[level])?);
+        }
+        cell.get().ok_or_else(|| WaveletError::Dimension(format!("no topology for level {level}")))
     }
 
     /// Index in the mesh this hierarchy was detected from of each hierarchical
@@ -161,6 +166,17 @@ impl Hierarchy {
     }
 }
 
+impl std::fmt::Debug for Hierarchy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let faces: Vec<usize> = self.faces.iter().map(Vec::len).collect();
+        f.debug_struct("Hierarchy")
+            .field("vertex_counts", &self.counts)
+            .field("face_counts", &faces)
+            .field("detected", &self.to_input.is_some())
+            .finish()
+    }
+}
+
 /// Refuses hierarchies whose finest level would exceed [`MAX_FACES`].
 pub(crate) fn check_size(faces: usize, levels: usize) -> Result<()> {
     let fine = (faces as u128).checked_shl(2 * levels.min(64) as u32).unwrap_or(u128::MAX);
@@ -177,10 +193,10 @@ pub(crate) fn check_size(faces: usize, levels: usize) -> Result<()> {
 /// [`mesh_core::shapes::midpoint_subdivide`]: odd vertex `n + e` on edge `e`,
 /// corner triangles of face `f` at `4f + k`, the middle one at `4f + 3`.
 /// (That function also needs positions; the hierarchy only has topology.)
-pub(crate) fn split_faces(conn: &Connectivity, faces: &[[u32; 3]], n: u32) -> Vec<[u32; 3]> {
+pub(crate) fn split_faces(topo: &Topology, faces: &[[u32; 3]], n: u32) -> Vec<[u32; 3]> {
     let mut fine = Vec::with_capacity(4 * faces.len());
     for (f, &[a, b, c]) in faces.iter().enumerate() {
-        let [eab, ebc, eca] = conn.face_edges(mesh_core::FaceId::new(f)).map(|e| n + e.0);
+        let [eab, ebc, eca] = topo.face_edges(f).map(|e| n + e);
         fine.push([a, eab, eca]);
         fine.push([b, ebc, eab]);
         fine.push([c, eca, ebc]);
@@ -198,7 +214,8 @@ mod tests {
     fn split_matches_mesh_core_midpoint_subdivide() {
         let m = shapes::torus(2.0, 0.5, 6, 4).unwrap();
         let (_, faces) = shapes::midpoint_subdivide(&m);
-        let ours = split_faces(m.connectivity(), m.faces(), m.vertex_count() as u32);
+        let topo = Topology::new(m.vertex_count(), m.faces()).unwrap();
+        let ours = split_faces(&topo, m.faces(), m.vertex_count() as u32);
         assert_eq!(ours, faces);
     }
 

@@ -55,6 +55,7 @@ pub mod multires;
 pub mod rules;
 pub mod scheme;
 pub mod subdivide;
+mod topology;
 mod update;
 
 pub use compress::{CompressOptions, Compression, CompressionPoint};
@@ -68,3 +69,8 @@ pub use scheme::{Scheme, WaveletKind};
 pub use subdivide::subdivide;
 
 pub use glam;
+
+#[doc(hidden)]
+pub fn __topology_edges(n: usize, faces: &[[u32; 3]]) -> usize {
+    topology::Topology::new(n, faces).map_or(0, |t| t.edge_count())
+}

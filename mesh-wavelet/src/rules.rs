@@ -7,9 +7,8 @@
 
 use std::f64::consts::TAU;
 
-use mesh_core::{Connectivity, EdgeId, VertexId, VertexKind};
-
 use crate::scheme::Scheme;
+use crate::topology::{Kind, Topology};
 
 /// Loop's (1987) even-vertex weight for an interior vertex of valence `n`:
 /// `beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n`. Cost O(1).
@@ -44,34 +43,24 @@ pub fn butterfly_vertex_weights(k: usize) -> Option<Vec<f64>> {
 /// The edge of K^j between `a` and `b`, if any. `hint` is tried first (the
 /// odd vertex index, which is the edge index for hierarchies built by
 /// subdivision). Cost O(valence).
-pub(crate) fn find_edge(conn: &Connectivity, a: u32, b: u32, hint: usize) -> Option<EdgeId> {
-    let key = [VertexId(a.min(b)), VertexId(a.max(b))];
-    if conn.edges().get(hint) == Some(&key) {
-        return Some(EdgeId::new(hint));
+pub(crate) fn find_edge(topo: &Topology, a: u32, b: u32, hint: usize) -> Option<u32> {
+    if topo.edges().get(hint) == Some(&[a.min(b), a.max(b)]) {
+        return Some(hint as u32);
     }
-    let (a, b) = (VertexId(a), VertexId(b));
-    let through = |from: VertexId, to: VertexId| conn.outgoing(from).iter().find(|&&h| conn.dest(h) == to);
-    through(a, b).or_else(|| through(b, a)).map(|&h| conn.edge(h))
-}
-
-/// The ordered 1-ring of `v` into `ring` (counter-clockwise; on the
-/// boundary from one boundary neighbour to the other).
-pub(crate) fn ring_into(conn: &Connectivity, v: u32, ring: &mut Vec<u32>) {
-    ring.clear();
-    ring.extend(conn.neighbors(VertexId(v)).map(|w| w.0));
+    topo.find_edge(a, b)
 }
 
 /// Neighbours of `v` with the number of faces on the connecting edge (1 on
 /// the boundary, 2 inside), into `out`.
-pub(crate) fn ring_with_face_counts(conn: &Connectivity, v: u32, out: &mut Vec<(u32, u8)>) {
+pub(crate) fn ring_with_face_counts(topo: &Topology, v: u32, out: &mut Vec<(u32, u8)>) {
     out.clear();
-    let out_h = conn.outgoing(VertexId(v));
+    let out_h = topo.out(v);
     for &h in out_h {
-        out.push((conn.dest(h).0, if conn.twin(h).is_some() { 2 } else { 1 }));
+        out.push((topo.dest(h), if topo.twin(h).is_some() { 2 } else { 1 }));
     }
-    if conn.vertex_kind(VertexId(v)) == VertexKind::Boundary {
+    if topo.kind(v) == Kind::Boundary {
         if let Some(&h) = out_h.last() {
-            out.push((conn.opposite_vertex(h).0, 1));
+            out.push((topo.opposite(h), 1));
         }
     }
 }
@@ -86,7 +75,7 @@ pub(crate) struct Scratch {
 /// The odd-vertex mask of `scheme` for the edge (`a`, `b`) with the vertices
 /// `opposite` to it (one on the boundary), appended to `row` as (vertex, weight).
 pub(crate) fn odd_mask(
-    conn: &Connectivity,
+    topo: &Topology,
     scheme: Scheme,
     a: u32,
     b: u32,
@@ -105,7 +94,7 @@ pub(crate) fn odd_mask(
                 row.extend(opposite.iter().map(|&c| (c, 1.0 / 8.0)));
             }
         }
-        Scheme::Butterfly => butterfly(conn, a, b, opposite, boundary_edge, scratch, row),
+        Scheme::Butterfly => butterfly(topo, a, b, opposite, boundary_edge, scratch, row),
     }
 }
 
@@ -113,13 +102,13 @@ fn midpoint(a: u32, b: u32, row: &mut Vec<(u32, f64)>) {
     row.extend([(a, 0.5), (b, 0.5)]);
 }
 
-fn is_interior(conn: &Connectivity, v: u32) -> bool {
-    conn.vertex_kind(VertexId(v)) == VertexKind::Interior
+fn is_interior(topo: &Topology, v: u32) -> bool {
+    topo.kind(v) == Kind::Interior
 }
 
 /// Modified butterfly (Zorin, Schroeder, Sweldens 1996).
 fn butterfly(
-    conn: &Connectivity,
+    topo: &Topology,
     a: u32,
     b: u32,
     opposite: &[u32],
@@ -129,7 +118,7 @@ fn butterfly(
 ) {
     if boundary_edge {
         // The 4-point rule along the boundary curve.
-        let (pa, pb) = (boundary_neighbor_other_than(conn, a, b), boundary_neighbor_other_than(conn, b, a));
+        let (pa, pb) = (boundary_neighbor_other_than(topo, a, b), boundary_neighbor_other_than(topo, b, a));
         match (pa, pb) {
             (Some(pa), Some(pb)) => {
                 row.extend([(a, 9.0 / 16.0), (b, 9.0 / 16.0), (pa, -1.0 / 16.0), (pb, -1.0 / 16.0)]);
@@ -139,8 +128,8 @@ fn butterfly(
         return;
     }
     let Scratch { ring_a, ring_b } = scratch;
-    let ok_a = is_interior(conn, a) && rotated_ring(conn, a, b, ring_a);
-    let ok_b = is_interior(conn, b) && rotated_ring(conn, b, a, ring_b);
+    let ok_a = is_interior(topo, a) && rotated_ring(topo, a, b, ring_a);
+    let ok_b = is_interior(topo, b) && rotated_ring(topo, b, a, ring_b);
     let (ka, kb) = (ring_a.len(), ring_b.len());
     match (ok_a, ok_b) {
         (true, true) if ka == 6 && kb == 6 => {
@@ -184,8 +173,8 @@ fn vertex_mask(v: u32, ring: &[u32], scale: f64, row: &mut Vec<(u32, f64)>) {
 
 /// The counter-clockwise ring of interior vertex `v` starting at `start`;
 /// `false` if `start` is not in it.
-fn rotated_ring(conn: &Connectivity, v: u32, start: u32, ring: &mut Vec<u32>) -> bool {
-    ring_into(conn, v, ring);
+fn rotated_ring(topo: &Topology, v: u32, start: u32, ring: &mut Vec<u32>) -> bool {
+    topo.ring_into(v, ring);
     match ring.iter().position(|&w| w == start) {
         Some(p) => {
             ring.rotate_left(p);
@@ -196,10 +185,10 @@ fn rotated_ring(conn: &Connectivity, v: u32, start: u32, ring: &mut Vec<u32>) ->
 }
 
 /// The boundary neighbour of boundary vertex `v` other than `not`.
-fn boundary_neighbor_other_than(conn: &Connectivity, v: u32, not: u32) -> Option<u32> {
-    let out = conn.outgoing(VertexId(v));
-    let first = conn.dest(*out.first()?).0;
-    let last = conn.opposite_vertex(*out.last()?).0;
+fn boundary_neighbor_other_than(topo: &Topology, v: u32, not: u32) -> Option<u32> {
+    let out = topo.out(v);
+    let first = topo.dest(*out.first()?);
+    let last = topo.opposite(*out.last()?);
     if first == not {
         Some(last)
     } else if last == not {
@@ -217,14 +206,14 @@ fn boundary_neighbor_other_than(conn: &Connectivity, v: u32, not: u32) -> Option
 /// sum to `3n/8 v + 5/8 sum v_k`; for a boundary vertex `gamma = 1/4` on its
 /// two boundary odd neighbours and `alpha = 1/2`. Returns alpha and the
 /// weight an interior (`false`) or boundary (`true`) odd neighbour gets.
-pub(crate) fn loop_even_lifting(conn: &Connectivity, v: u32) -> (f64, f64, f64) {
-    match conn.vertex_kind(VertexId(v)) {
-        VertexKind::Interior => {
-            let n = conn.valence(VertexId(v));
+pub(crate) fn loop_even_lifting(topo: &Topology, v: u32) -> (f64, f64, f64) {
+    match topo.kind(v) {
+        Kind::Interior => {
+            let n = topo.valence(v);
             let beta = loop_beta(n);
             (1.0 - 1.6 * n as f64 * beta, 1.6 * beta, 1.6 * beta)
         }
-        VertexKind::Boundary => (0.5, 0.0, 0.25),
+        Kind::Boundary => (0.5, 0.0, 0.25),
         _ => (1.0, 0.0, 0.0),
     }
 }

@@ -8,6 +8,7 @@ use crate::error::Result;
 use crate::filter::LevelFilter;
 use crate::hierarchy::{check_size, split_faces};
 use crate::scheme::{Scheme, WaveletKind};
+use crate::topology::{manifold_topology, Topology};
 
 /// Splits every triangle of `mesh` into four, `levels` times, placing the
 /// vertices with `scheme`.
@@ -30,27 +31,30 @@ pub fn subdivide(mesh: &TriMesh, scheme: Scheme, levels: usize) -> Result<TriMes
     check_size(mesh.face_count(), levels)?;
     let mut current = mesh.clone();
     for _ in 0..levels {
-        current = match scheme {
-            Scheme::Midpoint => {
-                let (p, f) = shapes::midpoint_subdivide(&current);
-                TriMesh::new(p, f)?
-            }
-            _ => split_once(&current, scheme)?,
-        };
+        current = split_once(&current, scheme)?;
     }
     Ok(current)
 }
 
-/// One level of Loop or butterfly: the synthesis step of the lazy filter
-/// bank with zero wavelet coefficients.
+/// One level: the synthesis step of the lazy filter bank with zero wavelet
+/// coefficients, on the lean topology (same numbering as
+/// [`mesh_core::shapes::midpoint_subdivide`], which handles the midpoint
+/// scheme on non-manifold meshes).
 fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
-    let conn = mesh.manifold_connectivity()?;
-    let parents: Vec<[u32; 2]> = conn.edges().iter().map(|e| [e[0].0, e[1].0]).collect();
-    let filter = LevelFilter::new(conn, &parents, scheme, WaveletKind::Lazy)?;
+    let topo = match Topology::new(mesh.vertex_count(), mesh.faces()) {
+        Ok(t) => t,
+        Err(_) if scheme == Scheme::Midpoint => {
+            let (p, f) = shapes::midpoint_subdivide(mesh);
+            return Ok(TriMesh::new(p, f)?);
+        }
+        Err(_) => manifold_topology(mesh.vertex_count(), mesh.faces())?,
+    };
+    let parents = topo.edges();
+    let filter = LevelFilter::new(&topo, parents, scheme, WaveletKind::Lazy)?;
     let mut positions = Vec::with_capacity(mesh.vertex_count() + parents.len());
     positions.extend_from_slice(mesh.positions());
     positions.resize(mesh.vertex_count() + parents.len(), DVec3::ZERO);
     filter.synthesize(&mut positions);
-    let faces = split_faces(conn, mesh.faces(), mesh.vertex_count() as u32);
+    let faces = split_faces(&topo, mesh.faces(), mesh.vertex_count() as u32);
     Ok(TriMesh::new(positions, faces)?)
 }

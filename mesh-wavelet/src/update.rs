@@ -20,28 +20,53 @@
 //! and butterfly the same weights are used (the hat functions then
 //! approximate their smooth scaling functions).
 
-use mesh_core::{Connectivity, VertexId};
-
 use crate::rules::ring_with_face_counts;
+use crate::topology::Topology;
 
-/// Scratch space for [`update_weights`], reused across odd vertices.
-#[derive(Default)]
+/// Scratch space for [`update_weights`], reused across the odd vertices of
+/// one level: `slot_of[v]` is valid when `stamp[v]` equals the current call.
 pub(crate) struct UpdateScratch {
     slots: Vec<u32>,
     rows: Vec<[f64; 4]>,
     ring: Vec<(u32, u8)>,
+    stamp: Vec<u32>,
+    slot_of: Vec<u32>,
+    call: u32,
 }
 
 impl UpdateScratch {
-    fn slot(&mut self, v: u32) -> usize {
-        match self.slots.iter().position(|&s| s == v) {
-            Some(p) => p,
-            None => {
-                self.slots.push(v);
-                self.rows.push([0.0; 4]);
-                self.slots.len() - 1
-            }
+    /// Scratch for a coarse mesh of `n` vertices.
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            slots: Vec::new(),
+            rows: Vec::new(),
+            ring: Vec::new(),
+            stamp: vec![u32::MAX; n],
+            slot_of: vec![0; n],
+            call: 0,
         }
+    }
+
+    fn begin(&mut self) {
+        self.slots.clear();
+        self.rows.clear();
+        self.call = self.call.wrapping_add(1);
+        if self.call == u32::MAX {
+            self.stamp.fill(u32::MAX);
+            self.call = 0;
+        }
+    }
+
+    fn slot(&mut self, v: u32) -> usize {
+        let i = v as usize;
+        if self.stamp[i] == self.call {
+            return self.slot_of[i] as usize;
+        }
+        self.stamp[i] = self.call;
+        self.slot_of[i] = self.slots.len() as u32;
+        self.slots.push(v);
+        self.rows.push([0.0; 4]);
+        self.slots.len() - 1
     }
 }
 
@@ -51,7 +76,7 @@ impl UpdateScratch {
 /// is singular, which only a degenerate diamond (repeated vertices) causes.
 /// Cost O(valence^2) per odd vertex.
 pub(crate) fn update_weights(
-    conn: &Connectivity,
+    topo: &Topology,
     a: u32,
     b: u32,
     opposite: &[u32],
@@ -70,16 +95,15 @@ pub(crate) fn update_weights(
         stencil[size] = (v, g);
         size += 1;
     }
-    scratch.slots.clear();
-    scratch.rows.clear();
+    scratch.begin();
     // Column k of M: <phi^j_k, phi^j_i> for i in the closed ring of stencil vertex k.
     for k in 0..size {
         let v = stencil[k].0;
-        let faces = conn.outgoing(VertexId(v)).len() as f64;
+        let faces = topo.out(v).len() as f64;
         let s = scratch.slot(v);
         scratch.rows[s][k] += 4.0 * faces / 6.0;
         let mut ring = std::mem::take(&mut scratch.ring);
-        ring_with_face_counts(conn, v, &mut ring);
+        ring_with_face_counts(topo, v, &mut ring);
         for &(w, fe) in &ring {
             let s = scratch.slot(w);
             scratch.rows[s][k] += fe as f64 / 3.0;
