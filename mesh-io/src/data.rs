@@ -93,6 +93,7 @@ impl ReadReport {
     /// Fan-triangulates one polygon `(0, i, i + 1)`, counting polygons and
     /// dropping (and counting) triangles that repeat a vertex. `emit` gets the
     /// corner numbers within the polygon and the triangle's vertex indices.
+    #[inline]
     pub(crate) fn triangulate(&mut self, polygon: &[u32], mut emit: impl FnMut([usize; 3], [u32; 3])) {
         let n = polygon.len();
         if n < 3 {

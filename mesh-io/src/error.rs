@@ -188,6 +188,14 @@ impl IoError {
         self
     }
 
+    /// Sets the line of the error's location, when it has none yet.
+    pub(crate) fn or_line(mut self, line: Option<usize>) -> Self {
+        if let Some(at @ Location { line: None, .. }) = self.location_mut() {
+            at.line = line;
+        }
+        self
+    }
+
     /// The location of the error in the input, if it has one.
     pub fn location(&self) -> Option<&Location> {
         match self {

@@ -190,17 +190,24 @@ fn base64_encode(data: &[u8]) -> String {
 
 /// Standard base64, padding optional; `None` on any other character.
 fn base64_decode(text: &[u8]) -> Option<Vec<u8>> {
+    const INVALID: u8 = 0xff;
+    let mut value = [INVALID; 256];
+    for (i, &c) in BASE64.iter().enumerate() {
+        value[c as usize] = i as u8;
+    }
     let text = text.strip_suffix(b"==").or_else(|| text.strip_suffix(b"=")).unwrap_or(text);
     let mut out = Vec::with_capacity(text.len() / 4 * 3 + 2);
     let (mut acc, mut bits) = (0u32, 0);
     for &c in text {
-        let v = BASE64.iter().position(|&b| b == c)? as u32;
-        acc = acc << 6 | v;
+        let v = value[c as usize];
+        if v == INVALID {
+            return None;
+        }
+        acc = (acc << 6 | u32::from(v)) & 0xff_ffff;
         bits += 6;
         if bits >= 8 {
             bits -= 8;
             out.push((acc >> bits) as u8);
-            acc &= (1 << bits) - 1;
         }
     }
     Some(out)

@@ -102,7 +102,7 @@ impl Scalar {
     }
 
     /// Decodes a value from exactly `self.size()` bytes.
-    #[inline]
+    #[inline(always)]
     fn decode(self, b: &[u8], big: bool) -> f64 {
         fn arr<const N: usize>(b: &[u8], big: bool) -> [u8; N] {
             let mut a = [0u8; N];
@@ -122,6 +122,32 @@ impl Scalar {
             Self::F32 => f64::from(f32::from_le_bytes(arr(b, big))),
             Self::F64 => f64::from_le_bytes(arr(b, big)),
         }
+    }
+
+    /// Decodes an integer from exactly `self.size()` bytes (`None` for a
+    /// float with a fractional part or out of the `i64` range).
+    #[inline(always)]
+    fn decode_int(self, b: &[u8], big: bool) -> Option<i64> {
+        let bytes = |n: usize| -> [u8; 4] {
+            let mut a = [0u8; 4];
+            a[..n].copy_from_slice(&b[..n]);
+            if big {
+                a[..n].reverse();
+            }
+            a
+        };
+        Some(match self {
+            Self::I8 => i64::from(b[0] as i8),
+            Self::U8 => i64::from(b[0]),
+            Self::I16 => i64::from(i32::from_le_bytes(bytes(2)) as i16),
+            Self::U16 => i64::from(u32::from_le_bytes(bytes(2)) as u16),
+            Self::I32 => i64::from(i32::from_le_bytes(bytes(4))),
+            Self::U32 => i64::from(u32::from_le_bytes(bytes(4))),
+            Self::F32 | Self::F64 => {
+                let x = self.decode(b, big);
+                return (x.fract() == 0.0 && x.abs() < 9.2e18).then_some(x as i64);
+            }
+        })
     }
 
     /// Appends `x` converted to this type.
@@ -299,34 +325,64 @@ trait Source {
     fn scalar(&mut self, t: Scalar) -> Result<f64>;
     /// The next value, which must be a non-negative integer (list length).
     fn count(&mut self, t: Scalar) -> Result<usize>;
-    /// Skips `n` values of type `t`.
-    fn skip(&mut self, t: Scalar, n: usize) -> Result<()>;
     /// The current location, for errors.
     fn at(&self) -> Location;
 
-    /// The next value as a (possibly negative) integer index.
-    #[inline]
-    fn index(&mut self, t: Scalar) -> Result<i64> {
-        let x = self.scalar(t)?;
-        if x.fract() != 0.0 || !x.is_finite() {
-            return Err(IoError::syntax(self.at(), "an integer vertex index", x.to_string().as_bytes()));
-        }
-        Ok(x as i64)
-    }
-
-    /// Skips one instance of every property.
-    fn skip_props(&mut self, props: &[Property]) -> Result<()> {
-        for p in props {
-            match p.kind {
-                Kind::Scalar(t) => self.skip(t, 1)?,
-                Kind::List(c, t) => {
-                    let n = self.count(c)?;
-                    self.skip(t, n)?
-                }
-            }
+    /// A whole list (length, then items) into `out`, which is cleared first.
+    fn list(&mut self, c: Scalar, t: Scalar, out: &mut Vec<f64>) -> Result<()> {
+        out.clear();
+        let n = self.count(c)?;
+        for _ in 0..n {
+            out.push(self.scalar(t)?);
         }
         Ok(())
     }
+
+    /// A list of vertex indices, each checked to be in `0..nv`, into `out`.
+    fn indices(&mut self, c: Scalar, t: Scalar, face: usize, nv: usize, out: &mut Vec<u32>) -> Result<()> {
+        out.clear();
+        let n = self.count(c)?;
+        for _ in 0..n {
+            let i = self.scalar(t)?;
+            if i.fract() != 0.0 {
+                return Err(IoError::syntax(self.at(), "an integer vertex index", i.to_string().as_bytes()));
+            }
+            out.push(vertex_index(|| self.at(), face, i as i64, nv)?);
+        }
+        Ok(())
+    }
+
+    /// Reads a `face` element made of the index list alone, straight into
+    /// `faces`, when this source has a fast path for it (`Ok(false)` if not).
+    fn index_lists(&mut self, _e: &Element, _nv: usize, _faces: &mut Faces, _report: &mut ReadReport) -> Result<bool> {
+        Ok(false)
+    }
+
+    /// Calls `visit` with the values of each instance of `e`: `row[k]` holds
+    /// property `k` (lists are skipped and leave their slot alone).
+    fn rows(&mut self, e: &Element, row: &mut [f64], visit: impl FnMut(&[f64]) -> Result<()>) -> Result<()> {
+        rows_one_by_one(self, e, row, visit)
+    }
+}
+
+/// [`Source::rows`] one value at a time.
+fn rows_one_by_one<S: Source + ?Sized>(
+    src: &mut S,
+    e: &Element,
+    row: &mut [f64],
+    mut visit: impl FnMut(&[f64]) -> Result<()>,
+) -> Result<()> {
+    let mut skipped = Vec::new();
+    for _ in 0..e.count {
+        for (slot, p) in row.iter_mut().zip(&e.props) {
+            match p.kind {
+                Kind::Scalar(t) => *slot = src.scalar(t)?,
+                Kind::List(c, t) => src.list(c, t, &mut skipped)?,
+            }
+        }
+        visit(row).map_err(|e| e.or_line(src.at().line))?;
+    }
+    Ok(())
 }
 
 struct Ascii<'a>(Scanner<'a>);
@@ -349,15 +405,22 @@ impl Source for Ascii<'_> {
         usize::try_from(n).map_err(|_| IoError::syntax(self.0.at(), "a list length", n.to_string().as_bytes()))
     }
 
-    fn skip(&mut self, t: Scalar, n: usize) -> Result<()> {
-        for _ in 0..n {
-            self.scalar(t)?;
-        }
-        Ok(())
-    }
-
     fn at(&self) -> Location {
         self.0.at()
+    }
+
+    /// Indices parsed as integers, not floats.
+    fn indices(&mut self, c: Scalar, _: Scalar, face: usize, nv: usize, out: &mut Vec<u32>) -> Result<()> {
+        out.clear();
+        let n = self.count(c)?;
+        for _ in 0..n {
+            if !self.0.skip_to_content() {
+                return Err(IoError::truncated(self.0.at(), "more vertex indices"));
+            }
+            let i = self.0.int("an integer vertex index")?;
+            out.push(vertex_index(|| self.0.at(), face, i, nv)?);
+        }
+        Ok(())
     }
 }
 
@@ -368,39 +431,112 @@ struct Binary<'a> {
 }
 
 impl Binary<'_> {
-    #[inline]
+    #[inline(always)]
     fn take(&mut self, len: usize) -> Result<&[u8]> {
-        let end = self.pos.checked_add(len).filter(|&e| e <= self.bytes.len());
-        let end = end.ok_or_else(|| IoError::truncated(loc(), format!("{len} more bytes at byte {}", self.pos)))?;
-        let taken = &self.bytes[self.pos..end];
-        self.pos = end;
-        Ok(taken)
+        match self.bytes.get(self.pos..).and_then(|rest| rest.get(..len)) {
+            Some(taken) => {
+                self.pos += len;
+                Ok(taken)
+            }
+            None => Err(truncated_at(self.pos, len)),
+        }
     }
 }
 
+#[cold]
+#[inline(never)]
+fn truncated_at(pos: usize, len: usize) -> IoError {
+    IoError::truncated(loc(), format!("{len} more bytes at byte {pos} of the body"))
+}
+
 impl Source for Binary<'_> {
-    #[inline]
+    #[inline(always)]
     fn scalar(&mut self, t: Scalar) -> Result<f64> {
         let big = self.big;
         Ok(t.decode(self.take(t.size())?, big))
     }
 
-    #[inline]
+    #[inline(always)]
     fn count(&mut self, t: Scalar) -> Result<usize> {
-        let n = self.scalar(t)?;
-        if n < 0.0 {
-            return Err(IoError::syntax(loc(), "a list length", n.to_string().as_bytes()));
-        }
-        Ok(n as usize)
+        let big = self.big;
+        let n = t.decode_int(self.take(t.size())?, big);
+        n.and_then(|n| usize::try_from(n).ok())
+            .ok_or_else(|| IoError::syntax(loc(), "a list length", b"a negative number"))
     }
 
+    /// One bounds check per list, integers decoded without going through `f64`.
     #[inline]
-    fn skip(&mut self, t: Scalar, n: usize) -> Result<()> {
-        self.take(n.saturating_mul(t.size())).map(|_| ())
+    fn indices(&mut self, c: Scalar, t: Scalar, face: usize, nv: usize, out: &mut Vec<u32>) -> Result<()> {
+        out.clear();
+        let n = self.count(c)?;
+        let big = self.big;
+        for b in self.take(n.saturating_mul(t.size()))?.chunks_exact(t.size()) {
+            let i = t.decode_int(b, big).ok_or_else(|| IoError::syntax(loc(), "an integer vertex index", b))?;
+            out.push(vertex_index(loc, face, i, nv)?);
+        }
+        Ok(())
     }
 
     fn at(&self) -> Location {
         loc()
+    }
+
+    /// One bounds check per list.
+    #[inline]
+    fn list(&mut self, c: Scalar, t: Scalar, out: &mut Vec<f64>) -> Result<()> {
+        out.clear();
+        let n = self.count(c)?;
+        let big = self.big;
+        let bytes = self.take(n.saturating_mul(t.size()))?;
+        out.extend(bytes.chunks_exact(t.size()).map(|b| t.decode(b, big)));
+        Ok(())
+    }
+
+    /// 32-bit index lists, triangles decoded without intermediate buffers.
+    fn index_lists(&mut self, e: &Element, nv: usize, faces: &mut Faces, report: &mut ReadReport) -> Result<bool> {
+        let [Property { kind: Kind::List(c, t @ (Scalar::I32 | Scalar::U32)), .. }] = e.props.as_slice() else {
+            return Ok(false);
+        };
+        let (c, t, big) = (*c, *t, self.big);
+        let mut polygon = Vec::new();
+        for f in 0..e.count {
+            let n = self.count(c)?;
+            let bytes = self.take(n.saturating_mul(4))?;
+            if n == 3 {
+                let mut tri = [0u32; 3];
+                for (v, b) in tri.iter_mut().zip(bytes.chunks_exact(4)) {
+                    let i = t.decode_int(b, big).unwrap_or(-1);
+                    *v = vertex_index(loc, f, i, nv)?;
+                }
+                faces.push(&tri, &[], report);
+            } else {
+                polygon.clear();
+                for b in bytes.chunks_exact(4) {
+                    polygon.push(vertex_index(loc, f, t.decode_int(b, big).unwrap_or(-1), nv)?);
+                }
+                faces.push(&polygon, &[], report);
+            }
+        }
+        Ok(true)
+    }
+
+    /// One bounds check per element when every property is a scalar.
+    fn rows(&mut self, e: &Element, row: &mut [f64], mut visit: impl FnMut(&[f64]) -> Result<()>) -> Result<()> {
+        let mut fields = Vec::new();
+        for p in &e.props {
+            let Kind::Scalar(t) = p.kind else { return rows_one_by_one(self, e, row, visit) };
+            fields.push((t, fields.last().map_or(0, |&(t, at): &(Scalar, usize)| at + t.size())));
+        }
+        let size = e.min_size(true) as usize;
+        let (big, count) = (self.big, e.count);
+        let bytes = self.take(size.saturating_mul(count))?;
+        for record in bytes.chunks_exact(size.max(1)).take(count) {
+            for (slot, &(t, at)) in row.iter_mut().zip(&fields) {
+                *slot = t.decode(&record[at..], big);
+            }
+            visit(row)?;
+        }
+        Ok(())
     }
 }
 
@@ -428,9 +564,7 @@ fn read_body(h: &Header, mut src: impl Source) -> Result<MeshData> {
             "face" if faces.is_none() => faces = Some(Faces::read(e, nv, &mut src, &mut report)?),
             _ => {
                 if !e.props.is_empty() {
-                    for _ in 0..e.count {
-                        src.skip_props(&e.props)?;
-                    }
+                    src.rows(e, &mut vec![0.0; e.props.len()], |_| Ok(()))?;
                 }
                 report.note(format!("element `{}` ({} items) ignored", e.name, e.count));
             }
@@ -462,72 +596,81 @@ struct Vertices {
     scalars: Vec<(String, Vec<f64>)>,
 }
 
-impl Vertices {
-    fn read(e: &Element, src: &mut impl Source) -> Result<Self> {
+/// Which property of the `vertex` element feeds which attribute.
+struct VertexSlots {
+    xyz: Vec<usize>,
+    normal: Option<Vec<usize>>,
+    uv: Option<Vec<usize>>,
+    /// Red, green, blue, alpha (alpha may point at the constant 1 slot).
+    color: Option<Vec<usize>>,
+    color_scale: Vec<f64>,
+    scalars: Vec<usize>,
+}
+
+impl VertexSlots {
+    /// Slots into a row of one value per property plus a constant 1 at the end.
+    fn new(e: &Element) -> Result<Self> {
         let all = |names: &[&[&str]]| names.iter().map(|n| e.find(n)).collect::<Option<Vec<usize>>>();
         let xyz = all(&[&["x"], &["y"], &["z"]]).ok_or_else(|| {
-            IoError::syntax(
-                loc(),
-                "`x`, `y` and `z` properties in element `vertex`",
-                e.props.first().map_or(&b""[..], |p| p.name.as_bytes()),
-            )
+            let first = e.props.first().map_or(&b""[..], |p| p.name.as_bytes());
+            IoError::syntax(loc(), "`x`, `y` and `z` properties in element `vertex`", first)
         })?;
-        let normal = all(&NORMALS);
-        let uv = all(&UVS);
+        let one = e.props.len();
         let color = all(&COLORS[..3]).map(|mut c| {
-            c.push(e.find(COLORS[3]).unwrap_or(usize::MAX));
+            c.push(e.find(COLORS[3]).unwrap_or(one));
             c
         });
+        let (normal, uv) = (all(&NORMALS), all(&UVS));
         let mut known = xyz.clone();
         known.extend(normal.iter().chain(&uv).chain(&color).flatten());
-        let scalar_props: Vec<usize> =
-            (0..e.props.len()).filter(|i| !known.contains(i) && matches!(e.props[*i].kind, Kind::Scalar(_))).collect();
-        let color_scale: Vec<f64> =
+        let scalars = (0..one).filter(|i| !known.contains(i) && matches!(e.props[*i].kind, Kind::Scalar(_))).collect();
+        let mut color_scale: Vec<f64> =
             e.props.iter().map(|p| if let Kind::Scalar(t) = p.kind { t.color_scale() } else { 1.0 }).collect();
+        color_scale.push(1.0);
+        Ok(Self { xyz, normal, uv, color, color_scale, scalars })
+    }
+}
 
+impl Vertices {
+    fn read(e: &Element, src: &mut impl Source) -> Result<Self> {
+        let slots = VertexSlots::new(e)?;
         let n = e.count;
+        fn with<T>(on: bool, n: usize) -> Option<Vec<T>> {
+            on.then(|| Vec::with_capacity(n))
+        }
         let mut out = Vertices {
             positions: Vec::with_capacity(n),
-            normals: normal.as_ref().map(|_| Vec::with_capacity(n)),
-            uvs: uv.as_ref().map(|_| Vec::with_capacity(n)),
-            colors: color.as_ref().map(|_| Vec::with_capacity(n)),
-            scalars: scalar_props.iter().map(|&i| (e.props[i].name.clone(), Vec::with_capacity(n))).collect(),
+            normals: with(slots.normal.is_some(), n),
+            uvs: with(slots.uv.is_some(), n),
+            colors: with(slots.color.is_some(), n),
+            scalars: slots.scalars.iter().map(|&i| (e.props[i].name.clone(), Vec::with_capacity(n))).collect(),
         };
-        let mut row = vec![0.0; e.props.len() + 1];
-        let alpha_slot = e.props.len();
-        row[alpha_slot] = 1.0;
-        for i in 0..n {
-            for (slot, p) in e.props.iter().enumerate() {
-                match p.kind {
-                    Kind::Scalar(t) => row[slot] = src.scalar(t)?,
-                    Kind::List(c, t) => {
-                        let len = src.count(c)?;
-                        src.skip(t, len)?
-                    }
-                }
-            }
-            let p = DVec3::new(row[xyz[0]], row[xyz[1]], row[xyz[2]]);
-            if !p.is_finite() {
-                return Err(IoError::NonFinite { at: src.at(), vertex: i });
-            }
-            out.positions.push(p);
-            if let (Some(s), Some(list)) = (&normal, &mut out.normals) {
-                list.push(DVec3::new(row[s[0]], row[s[1]], row[s[2]]));
-            }
-            if let (Some(s), Some(list)) = (&uv, &mut out.uvs) {
-                list.push(DVec2::new(row[s[0]], row[s[1]]));
-            }
-            if let (Some(s), Some(list)) = (&color, &mut out.colors) {
-                let slot = |k: usize| s[k].min(alpha_slot);
-                list.push(
-                    [0, 1, 2, 3].map(|k| (row[slot(k)] * color_scale.get(slot(k)).copied().unwrap_or(1.0)) as f32),
-                );
-            }
-            for ((_, list), &slot) in out.scalars.iter_mut().zip(&scalar_props) {
-                list.push(row[slot]);
-            }
-        }
+        let mut row = vec![1.0; e.props.len() + 1];
+        src.rows(e, &mut row[..e.props.len()], |row| out.push(&slots, row))?;
         Ok(out)
+    }
+
+    #[inline]
+    fn push(&mut self, s: &VertexSlots, row: &[f64]) -> Result<()> {
+        let value = |k: usize| row.get(k).copied().unwrap_or(1.0);
+        let p = DVec3::new(value(s.xyz[0]), value(s.xyz[1]), value(s.xyz[2]));
+        if !p.is_finite() {
+            return Err(IoError::NonFinite { at: loc(), vertex: self.positions.len() });
+        }
+        self.positions.push(p);
+        if let (Some(k), Some(list)) = (&s.normal, &mut self.normals) {
+            list.push(DVec3::new(value(k[0]), value(k[1]), value(k[2])));
+        }
+        if let (Some(k), Some(list)) = (&s.uv, &mut self.uvs) {
+            list.push(DVec2::new(value(k[0]), value(k[1])));
+        }
+        if let (Some(k), Some(list)) = (&s.color, &mut self.colors) {
+            list.push([0, 1, 2, 3].map(|c| (value(k[c]) * s.color_scale[k[c]]) as f32));
+        }
+        for ((_, list), &k) in self.scalars.iter_mut().zip(&s.scalars) {
+            list.push(value(k));
+        }
+        Ok(())
     }
 }
 
@@ -539,47 +682,43 @@ struct Faces {
 
 impl Faces {
     fn read(e: &Element, nv: usize, src: &mut impl Source, report: &mut ReadReport) -> Result<Self> {
-        let indices =
-            e.find(&["vertex_indices", "vertex_index"]).filter(|&i| matches!(e.props[i].kind, Kind::List(..)));
-        let Some(indices) = indices else {
+        let list = |names: &[&str]| e.find(names).filter(|&i| matches!(e.props[i].kind, Kind::List(..)));
+        let Some(indices) = list(&["vertex_indices", "vertex_index"]) else {
             return Err(IoError::syntax(loc(), "a `vertex_indices` list in element `face`", b""));
         };
-        let texcoord = e.find(&["texcoord"]).filter(|&i| matches!(e.props[i].kind, Kind::List(..)));
+        let texcoord = list(&["texcoord"]);
+        // `check_counts` bounds e.count by the data size.
         let mut out = Faces { faces: Vec::with_capacity(e.count), corner_uvs: texcoord.map(|_| Vec::new()) };
-        let (mut polygon, mut uv) = (Vec::new(), Vec::new());
+        if src.index_lists(e, nv, &mut out, report)? {
+            return Ok(out);
+        }
+        let (mut polygon, mut uv, mut skipped) = (Vec::new(), Vec::new(), Vec::new());
         for f in 0..e.count {
             for (k, p) in e.props.iter().enumerate() {
                 match p.kind {
-                    Kind::List(c, t) if k == indices => {
-                        let n = src.count(c)?;
-                        polygon.clear();
-                        for _ in 0..n {
-                            let i = src.index(t)?;
-                            polygon.push(vertex_index(|| src.at(), f, i, nv)?);
-                        }
-                    }
-                    Kind::List(c, t) if Some(k) == texcoord => {
-                        let n = src.count(c)?;
-                        uv.clear();
-                        for _ in 0..n {
-                            uv.push(src.scalar(t)?);
-                        }
-                    }
-                    _ => src.skip_props(std::slice::from_ref(p))?,
+                    Kind::List(c, t) if k == indices => src.indices(c, t, f, nv, &mut polygon)?,
+                    Kind::List(c, t) if Some(k) == texcoord => src.list(c, t, &mut uv)?,
+                    Kind::List(c, t) => src.list(c, t, &mut skipped)?,
+                    Kind::Scalar(t) => drop(src.scalar(t)?),
                 }
             }
-            if texcoord.is_some() && uv.len() != 2 * polygon.len() && out.corner_uvs.take().is_some() {
-                report.note("texture coordinates dropped: a face's `texcoord` list does not match its vertices");
-            }
-            let Faces { faces, corner_uvs } = &mut out;
-            report.triangulate(&polygon, |corners, tri| {
-                faces.push(tri);
-                if let Some(list) = corner_uvs {
-                    list.push(corners.map(|c| DVec2::new(uv[2 * c], uv[2 * c + 1])));
-                }
-            });
+            out.push(&polygon, &uv, report);
         }
         Ok(out)
+    }
+
+    #[inline]
+    fn push(&mut self, polygon: &[u32], uv: &[f64], report: &mut ReadReport) {
+        if self.corner_uvs.is_some() && uv.len() != 2 * polygon.len() && self.corner_uvs.take().is_some() {
+            report.note("texture coordinates dropped: a face's `texcoord` list does not match its vertices");
+        }
+        let Faces { faces, corner_uvs } = self;
+        report.triangulate(polygon, |corners, tri| {
+            faces.push(tri);
+            if let Some(list) = corner_uvs {
+                list.push(corners.map(|c| DVec2::new(uv[2 * c], uv[2 * c + 1])));
+            }
+        });
     }
 }
 
@@ -795,15 +934,36 @@ property float y\nproperty float z\nend_header\n";
         let err = e(bad_index.as_bytes());
         assert!(matches!(err, IoError::Index { index: 9, .. }), "{err}");
         assert_eq!(err.location().and_then(|l| l.line), Some(23));
-        assert!(matches!(
-            e(text.replace("1 1 0 0 0 255", "1 nan 0 0 0 255").as_bytes()),
-            IoError::NonFinite { vertex: 2, .. }
-        ));
+        let nan = e(text.replace("1 1 0 0 0 255", "1 nan 0 0 0 255").as_bytes());
+        assert!(matches!(nan, IoError::NonFinite { vertex: 2, .. }));
+        assert_eq!(nan.location().and_then(|l| l.line), Some(21));
         assert!(matches!(e(&ASCII[..ASCII.len() - 8]), IoError::Truncated { .. }));
         assert!(matches!(
             e(text.replace("uchar int", "uchar float").replace("3 0 2 2", "3 0 2 2.5").as_bytes()),
             IoError::Syntax { .. }
         ));
+    }
+
+    #[test]
+    fn binary_polygons_and_16_bit_indices() {
+        let head = "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+property float z\nelement face 2\nproperty list uchar uint vertex_indices\nend_header\n";
+        let mut bytes = head.as_bytes().to_vec();
+        for p in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]] {
+            p.iter().for_each(|c| bytes.extend_from_slice(&c.to_be_bytes()));
+        }
+        for face in [&[0u32, 1, 2, 3][..], &[0, 2, 3]] {
+            bytes.push(face.len() as u8);
+            face.iter().for_each(|i| bytes.extend_from_slice(&i.to_be_bytes()));
+        }
+        let d = read(&bytes).unwrap();
+        assert_eq!(d.mesh.faces(), &[[0, 1, 2], [0, 2, 3], [0, 2, 3]]);
+        assert_eq!(d.report.polygons_triangulated, 1);
+        let head16 = head.replace("uchar uint", "uchar ushort").replace("face 2", "face 1");
+        let mut bytes16 = head16.into_bytes();
+        bytes16.extend_from_slice(&bytes[head.len()..head.len() + 48]);
+        bytes16.extend_from_slice(&[3, 0, 0, 0, 1, 0, 2]);
+        assert_eq!(read(&bytes16).unwrap().mesh.faces(), &[[0, 1, 2]]);
     }
 
     #[test]
