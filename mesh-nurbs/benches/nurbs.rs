@@ -52,7 +52,18 @@ fn surface(c: &mut Criterion) {
     let uv = parameters(1000);
     let mut group = c.benchmark_group("bicubic surface");
     group.throughput(Throughput::Elements(uv.len() as u64));
-    group.bench_function("point+first derivatives x1000", |b| {
+    group.bench_function("point+first derivatives (point_and_tangents) x1000", |b| {
+        b.iter(|| {
+            let mut acc = DVec3::ZERO;
+            for &(u, v) in &uv {
+                if let Ok([p, su, sv]) = s.point_and_tangents(u, v) {
+                    acc += p + su + sv;
+                }
+            }
+            black_box(acc)
+        })
+    });
+    group.bench_function("point+first derivatives (derivatives(u, v, 1)) x1000", |b| {
         b.iter(|| {
             let mut acc = DVec3::ZERO;
             for &(u, v) in &uv {

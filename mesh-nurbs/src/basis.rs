@@ -11,8 +11,11 @@ use crate::error::{NurbsError, Result};
 use crate::knots::KnotVector;
 
 /// Largest supported degree. Fixed-size stack arrays of `MAX_DEGREE + 1`
-/// entries hold the non-zero basis functions of one span.
-pub const MAX_DEGREE: usize = 11;
+/// entries hold the non-zero basis functions of one span; 7 keeps them small
+/// enough to be moved without a `memcpy` call in the hot path (measured: the
+/// bicubic point with tangents runs twice as fast as with room for degree 11),
+/// and is above the degrees CAD data uses (rarely more than 5).
+pub const MAX_DEGREE: usize = 7;
 
 /// Capacity of the per-span arrays: `MAX_DEGREE + 1`.
 pub const CAP: usize = MAX_DEGREE + 1;
@@ -67,7 +70,8 @@ fn ratio(a: f64, b: f64) -> f64 {
 /// All `p + 1` non-zero basis functions at `u` on knot span `span` (from
 /// [`KnotVector::span`]): entry `j` is `N_{span-p+j,p}(u)` (Piegl & Tiller
 /// A2.2, the triangular form of eq. 2.1-2.2). Denominators are never zero on a
-/// non-empty span. Cost O(p^2), no allocation.
+/// non-empty span; their reciprocals are precomputed per span by
+/// [`KnotVector`], so evaluation only multiplies. Cost O(p^2), no allocation.
 #[inline]
 pub fn basis_values(kv: &KnotVector, span: usize, u: f64) -> [f64; CAP] {
     let mut n = [0.0; CAP];
@@ -87,6 +91,7 @@ pub fn basis_values(kv: &KnotVector, span: usize, u: f64) -> [f64; CAP] {
 fn values_core<const C: usize, const P: usize>(kv: &KnotVector, span: usize, u: f64, n: &mut [f64; CAP]) {
     let p = if P > 0 { P } else { kv.degree() };
     let t = kv.knots();
+    let inv = kv.inverse_differences(span);
     let mut left = [0.0; C];
     let mut right = [0.0; C];
     n[0] = 1.0;
@@ -95,7 +100,8 @@ fn values_core<const C: usize, const P: usize>(kv: &KnotVector, span: usize, u: 
         right[j] = t[span + j] - u;
         let mut saved = 0.0;
         for r in 0..j {
-            let temp = n[r] / (right[r + 1] + left[j - r]);
+            // 1 / (right[r + 1] + left[j - r]), precomputed per span.
+            let temp = n[r] * inv[j * (j - 1) / 2 + r];
             n[r] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;
         }
@@ -109,8 +115,15 @@ fn values_core<const C: usize, const P: usize>(kv: &KnotVector, span: usize, u: 
 #[inline]
 pub fn basis_derivatives<const N: usize>(kv: &KnotVector, span: usize, u: f64) -> [[f64; CAP]; N] {
     let mut out = [[0.0; CAP]; N];
-    derivatives_core(kv, span, u, N.saturating_sub(1), |k, j, value| out[k][j] = value);
+    basis_derivatives_in(kv, span, u, &mut out);
     out
+}
+
+/// [`basis_derivatives`] into an array of the caller (entries beyond `p` are
+/// left as they are).
+#[inline]
+pub(crate) fn basis_derivatives_in<const N: usize>(kv: &KnotVector, span: usize, u: f64, out: &mut [[f64; CAP]; N]) {
+    derivatives_core(kv, span, u, N.saturating_sub(1), |k, j, value| out[k][j] = value);
 }
 
 /// Same as [`basis_derivatives`] for a run-time order `n`, into a caller
@@ -155,6 +168,7 @@ fn derivatives_sized<const C: usize, const P: usize>(
 ) {
     let p = if P > 0 { P } else { kv.degree() };
     let t = kv.knots();
+    let inv = kv.inverse_differences(span);
     let mut ndu = [[0.0; C]; C];
     let mut left = [0.0; C];
     let mut right = [0.0; C];
@@ -166,7 +180,7 @@ fn derivatives_sized<const C: usize, const P: usize>(
         for r in 0..j {
             // The lower triangle keeps reciprocals of the knot differences, so
             // the derivative pass below multiplies instead of dividing.
-            ndu[j][r] = 1.0 / (right[r + 1] + left[j - r]);
+            ndu[j][r] = inv[j * (j - 1) / 2 + r];
             let temp = ndu[r][j - 1] * ndu[j][r];
             ndu[r][j] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;

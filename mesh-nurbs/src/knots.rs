@@ -19,6 +19,10 @@ pub struct KnotVector {
     degree: usize,
     /// Largest span index `i <= n` with `t_i < t_{n+1}`: the span of the domain end.
     last_span: usize,
+    /// Per span `s = p..=n`, the reciprocals `1 / (t_{s+r+1} - t_{s+1-j+r})`
+    /// for `j = 1..=p`, `r < j` (the denominators of eq. 2.2 on that span,
+    /// which do not depend on `u`), so that evaluation never divides.
+    inverse_differences: Vec<f64>,
 }
 
 impl KnotVector {
@@ -41,7 +45,8 @@ impl KnotVector {
         }
         // Exists since t_p < t_{n+1}.
         let last_span = (degree..=n).rev().find(|&i| knots[i] < end).unwrap_or(degree);
-        Ok(Self { knots, degree, last_span })
+        let inverse_differences = inverse_differences(&knots, degree);
+        Ok(Self { knots, degree, last_span, inverse_differences })
     }
 
     /// Validates `knots` and checks that they fit `control_points` control points.
@@ -126,6 +131,15 @@ impl KnotVector {
         self.degree + self.knots[self.degree + 1..=n].partition_point(|&t| t <= u)
     }
 
+    /// Reciprocal knot differences of a non-empty span (see the field); entry
+    /// `j (j - 1) / 2 + r` is `1 / (t_{s+r+1} - t_{s+1-j+r})`.
+    #[inline]
+    pub(crate) fn inverse_differences(&self, span: usize) -> &[f64] {
+        let per_span = self.degree * (self.degree + 1) / 2;
+        let start = (span - self.degree) * per_span;
+        &self.inverse_differences[start..start + per_span]
+    }
+
     /// Multiplicity of the value `u` in the knot vector (exact comparison). Cost O(log m).
     pub fn multiplicity(&self, u: f64) -> usize {
         let lo = self.knots.partition_point(|&t| t < u);
@@ -145,6 +159,22 @@ impl KnotVector {
         }
         out
     }
+}
+
+/// Table of [`KnotVector::inverse_differences`] for every span (0 where a
+/// difference vanishes: empty spans, never evaluated).
+fn inverse_differences(knots: &[f64], p: usize) -> Vec<f64> {
+    let n = knots.len() - p - 2;
+    let mut out = Vec::with_capacity((n + 1 - p) * p * (p + 1) / 2);
+    for s in p..=n {
+        for j in 1..=p {
+            for r in 0..j {
+                let d = knots[s + r + 1] - knots[s + 1 - j + r];
+                out.push(if d > 0.0 { 1.0 / d } else { 0.0 });
+            }
+        }
+    }
+    out
 }
 
 fn check_sizes(degree: usize, control_points: usize) -> Result<()> {

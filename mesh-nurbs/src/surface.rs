@@ -4,7 +4,7 @@
 
 use glam::{DAffine3, DVec3, DVec4};
 
-use crate::basis::{basis_derivatives, CAP};
+use crate::basis::{basis_derivatives_in, CAP};
 use crate::curve::{cartesian, check_count, elevate_degree_line, homogeneous, insert_knot_line};
 use crate::error::{check_param, NurbsError, Result};
 use crate::knots::KnotVector;
@@ -54,11 +54,13 @@ pub(crate) struct SpanBasis<const N: usize> {
 
 impl<const N: usize> SpanBasis<N> {
     /// Basis at `t` (already checked finite); clamps into the domain.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn new(kv: &KnotVector, t: f64) -> Self {
         let t = kv.clamp(t);
         let span = kv.span(t);
-        Self { span, ders: basis_derivatives::<N>(kv, span, t) }
+        let mut basis = Self { span, ders: [[0.0; CAP]; N] };
+        basis_derivatives_in(kv, span, t, &mut basis.ders);
+        basis
     }
 }
 
@@ -179,6 +181,19 @@ impl NurbsSurface {
         }
     }
 
+    /// `[S, s_u, s_v]` at `(u, v)`: the first-order case of
+    /// [`Self::derivatives`] in a smaller return value, for the hot loops of
+    /// callers that need no second derivatives. Cost O(p^2 + q^2 + p q).
+    #[inline]
+    pub fn point_and_tangents(&self, u: f64, v: f64) -> Result<[DVec3; 3]> {
+        check_param("u", u)?;
+        check_param("v", v)?;
+        let bu = SpanBasis::<2>::new(&self.knots_u, u);
+        let bv = SpanBasis::<2>::new(&self.knots_v, v);
+        let s = rational_derivatives(&self.homogeneous_derivatives(&bu, &bv));
+        Ok([s[0][0], s[1][0], s[0][1]])
+    }
+
     /// Unit normal `n = s_u x s_v / |s_u x s_v|` (section 2.5). At a degenerate
     /// point it is the limit from inside the domain along the iso-line through
     /// the point (see [`Self::limit_normal`]); zero if there is none.
@@ -215,7 +230,7 @@ impl NurbsSurface {
     }
 
     /// Derivatives of orders `< N` (clamped finite parameters).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn derivatives_at<const N: usize>(&self, u: f64, v: f64) -> SurfaceDerivatives {
         let bu = SpanBasis::<N>::new(&self.knots_u, u);
         let bv = SpanBasis::<N>::new(&self.knots_v, v);
@@ -223,7 +238,7 @@ impl NurbsSurface {
     }
 
     /// Derivatives of orders `< N` from precomputed bases (grids reuse them).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn derivatives_with<const N: usize>(&self, bu: &SpanBasis<N>, bv: &SpanBasis<N>) -> SurfaceDerivatives {
         let a = self.homogeneous_derivatives(bu, bv);
         let s = rational_derivatives(&a);

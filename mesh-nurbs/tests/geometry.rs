@@ -219,3 +219,14 @@ fn degree_elevation_keeps_surfaces() {
         }
     }
 }
+
+#[test]
+fn point_and_tangents_match_derivatives() {
+    let s = shapes::torus(DVec3::ZERO, 2.0, 0.5).expect("torus");
+    for (u, v) in [(0.0, 0.0), (0.3, 0.7), (1.0, 0.25)] {
+        let [p, su, sv] = s.point_and_tangents(u, v).expect("tangents");
+        let d = s.derivatives(u, v, 1).expect("derivatives");
+        assert_eq!((p, su, sv), (d.point, d.su, d.sv));
+    }
+    assert!(s.point_and_tangents(f64::NAN, 0.0).is_err());
+}
