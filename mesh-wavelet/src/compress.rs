@@ -76,7 +76,7 @@ impl Multiresolution {
         let total = scored.len();
         let kept = ((options.keep * total as f64).round() as usize).min(total);
         if kept < total && kept > 0 {
-            scored.select_nth_unstable_by(kept - 1, |a, b| b.0.total_cmp(&a.0));
+            scored.select_nth_unstable_by(kept - 1, by_score);
         }
         let mut data = self.data().to_vec();
         for &(_, i) in &scored[kept..] {
@@ -97,7 +97,7 @@ impl Multiresolution {
             check_fraction(f)?;
         }
         let mut scored = self.scored_coefficients();
-        scored.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+        scored.sort_unstable_by(by_score);
         let reference = self.synthesize()?;
         let total = scored.len();
         fractions
@@ -114,6 +114,12 @@ impl Multiresolution {
             })
             .collect()
     }
+}
+
+/// Larger scores first, ties by position, so that every selection of the
+/// `k` best is the same set.
+fn by_score(a: &(f64, u32), b: &(f64, u32)) -> std::cmp::Ordering {
+    b.0.total_cmp(&a.0).then(a.1.cmp(&b.1))
 }
 
 fn check_fraction(f: f64) -> Result<()> {
