@@ -1,2 +1,13 @@
 //! Geodesic distances on triangle meshes (work in progress).
 #![deny(missing_docs)]
+// `!(x > 0.0)` is the NaN-rejecting test used throughout on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod dijkstra;
+pub mod error;
+pub mod fmm;
+mod support;
+
+pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
+pub use error::{GeodesicError, Result};
+pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
