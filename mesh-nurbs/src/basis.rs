@@ -2,7 +2,9 @@
 //! eq. 2.1-2.2 of the seed, and their derivatives.
 //!
 //! On a knot span `[t_s, t_{s+1})` only the `p + 1` functions
-//! `N_{s-p,p}, ..., N_{s,p}` are non-zero (local support). The functions here
+//! `N_{s-p,p}, ..., N_{s,p}` are non-zero (local support). The span argument
+//! of the functions here is meant to come from [`KnotVector::span`]; other
+//! values are clamped into `p..=n` (wrong results, never a panic). The functions here
 //! compute all of them in one triangular pass into fixed-size arrays of
 //! [`MAX_DEGREE`]` + 1` entries (entry `j` holds `N_{s-p+j,p}`), so the hot
 //! path never allocates.
@@ -74,6 +76,7 @@ fn ratio(a: f64, b: f64) -> f64 {
 /// [`KnotVector`], so evaluation only multiplies. Cost O(p^2), no allocation.
 #[inline]
 pub fn basis_values(kv: &KnotVector, span: usize, u: f64) -> [f64; CAP] {
+    let span = kv.clamp_span(span);
     let mut n = [0.0; CAP];
     match kv.degree() {
         1 => values_core::<2, 1>(kv, span, u, &mut n),
@@ -123,6 +126,7 @@ pub fn basis_derivatives<const N: usize>(kv: &KnotVector, span: usize, u: f64) -
 /// left as they are).
 #[inline]
 pub(crate) fn basis_derivatives_in<const N: usize>(kv: &KnotVector, span: usize, u: f64, out: &mut [[f64; CAP]; N]) {
+    let span = kv.clamp_span(span);
     derivatives_core(kv, span, u, N.saturating_sub(1), |k, j, value| out[k][j] = value);
 }
 
@@ -137,6 +141,7 @@ pub fn basis_derivatives_into(kv: &KnotVector, span: usize, u: f64, n: usize, ou
         return Err(NurbsError::Count { what: "basis derivative buffer length", expected: needed, found: out.len() });
     }
     out[..needed].fill(0.0);
+    let span = kv.clamp_span(span);
     derivatives_core(kv, span, u, n, |k, j, value| out[k * stride + j] = value);
     Ok(())
 }

@@ -131,6 +131,12 @@ impl KnotVector {
         self.degree + self.knots[self.degree + 1..=n].partition_point(|&t| t <= u)
     }
 
+    /// `span` clamped into the valid range `p..=n`.
+    #[inline]
+    pub(crate) fn clamp_span(&self, span: usize) -> usize {
+        span.clamp(self.degree, self.control_count() - 1)
+    }
+
     /// Reciprocal knot differences of a non-empty span (see the field); entry
     /// `j (j - 1) / 2 + r` is `1 / (t_{s+r+1} - t_{s+1-j+r})`.
     #[inline]

@@ -115,3 +115,14 @@ fn last_knot_is_the_limit_from_the_left() {
     assert_eq!(basis_function(&kv, 6, 1.0), 1.0);
     assert_eq!(basis_function(&kv, 5, 1.0), 0.0);
 }
+
+#[test]
+fn wrong_spans_do_not_panic() {
+    let kv = KnotVector::clamped_uniform(3, 6).expect("valid knots");
+    for span in [0, 1, 2, 100, usize::MAX] {
+        let n = basis_values(&kv, span, 0.5);
+        assert!(n.iter().all(|x| x.is_finite()));
+        let d = basis_derivatives::<3>(&kv, span, f64::NAN);
+        assert!(d.len() == 3);
+    }
+}
