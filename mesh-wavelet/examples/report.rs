@@ -48,7 +48,7 @@ fn main() {
             "\n## {name}: {} vertices, {} levels, base {} vertices",
             mesh.vertex_count(),
             h.levels(),
-            h.vertex_count(0)
+            h.vertex_count(0).unwrap()
         );
         for scheme in Scheme::ALL {
             for kind in [WaveletKind::Lazy, WaveletKind::Lifted] {

@@ -56,10 +56,10 @@ impl Multiresolution {
     /// it. Returns (score, index into [`Multiresolution::data`]).
     fn scored_coefficients(&self) -> Vec<(f64, u32)> {
         let h = self.hierarchy();
-        let mut scored = Vec::with_capacity(self.data().len() - h.vertex_count(0));
+        let mut scored = Vec::with_capacity(self.data().len() - h.count(0));
         for j in 0..self.levels() {
             let scale = 0.5f64.powi(j as i32);
-            for i in h.vertex_count(j)..h.vertex_count(j + 1) {
+            for i in h.count(j)..h.count(j + 1) {
                 scored.push((self.data()[i].length() * scale, i as u32));
             }
         }

@@ -133,11 +133,23 @@ impl LevelFilter {
         self.fine
     }
 
+    fn split<'a, T>(&self, data: &'a mut [T]) -> Result<(&'a mut [T], &'a mut [T])> {
+        if data.len() < self.fine {
+            return Err(WaveletError::Dimension(format!(
+                "{} values for a level of {} vertices",
+                data.len(),
+                self.fine
+            )));
+        }
+        Ok(data[..self.fine].split_at_mut(self.coarse))
+    }
+
     /// One analysis step in place on `data[..n_{j+1}]`: afterwards
     /// `data[..n_j]` holds the coarse approximation `A v^{j+1}` and
     /// `data[n_j..n_{j+1}]` the wavelet coefficients `B v^{j+1}`.
-    pub fn analyze<T: Coefficient>(&self, data: &mut [T]) {
-        let (even, odd) = data[..self.fine].split_at_mut(self.coarse);
+    /// Cost O(n_{j+1}).
+    pub fn analyze<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
+        let (even, odd) = self.split(data)?;
         if let Some((alpha, gamma)) = &self.smooth {
             for (i, &o) in odd.iter().enumerate() {
                 for (k, w) in gamma.row(i) {
@@ -162,12 +174,13 @@ impl LevelFilter {
                 }
             }
         }
+        Ok(())
     }
 
     /// One synthesis step in place, the exact inverse of
-    /// [`LevelFilter::analyze`]: `v^{j+1} = P v^j + Q w^j`.
-    pub fn synthesize<T: Coefficient>(&self, data: &mut [T]) {
-        let (even, odd) = data[..self.fine].split_at_mut(self.coarse);
+    /// [`LevelFilter::analyze`]: `v^{j+1} = P v^j + Q w^j`. Cost O(n_{j+1}).
+    pub fn synthesize<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
+        let (even, odd) = self.split(data)?;
         if let Some(u) = &self.update {
             for (i, &o) in odd.iter().enumerate() {
                 for (k, w) in u.row(i) {
@@ -192,6 +205,7 @@ impl LevelFilter {
                 }
             }
         }
+        Ok(())
     }
 }
 
@@ -211,7 +225,7 @@ impl FilterBank {
     /// otherwise). Cost O(n_J).
     pub fn new(hierarchy: &Hierarchy, scheme: Scheme, kind: WaveletKind) -> Result<Self> {
         let levels = (0..hierarchy.levels())
-            .map(|j| LevelFilter::new(hierarchy.topology(j)?, hierarchy.parents(j), scheme, kind))
+            .map(|j| LevelFilter::new(hierarchy.topology(j)?, hierarchy.parents(j)?, scheme, kind))
             .collect::<Result<Vec<_>>>()?;
         Ok(Self { scheme, kind, levels })
     }
@@ -231,9 +245,9 @@ impl FilterBank {
         self.levels.len()
     }
 
-    /// The lifting steps of level j -> j+1.
-    pub fn level(&self, j: usize) -> &LevelFilter {
-        &self.levels[j]
+    /// The lifting steps of level j -> j+1 (`None` for `j >= J`).
+    pub fn level(&self, j: usize) -> Option<&LevelFilter> {
+        self.levels.get(j)
     }
 
     /// Number of vertices of K^J, the length of the data this bank transforms.
@@ -261,7 +275,7 @@ impl FilterBank {
     pub fn analyze<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
         self.check_len(data, self.levels())?;
         for l in self.levels.iter().rev() {
-            l.analyze(data);
+            l.analyze(data)?;
         }
         Ok(())
     }
@@ -275,7 +289,7 @@ impl FilterBank {
         }
         self.check_len(data, level)?;
         for l in &self.levels[..level] {
-            l.synthesize(data);
+            l.synthesize(data)?;
         }
         Ok(())
     }

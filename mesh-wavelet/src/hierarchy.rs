@@ -13,7 +13,8 @@
 
 use std::sync::OnceLock;
 
-use mesh_core::MeshError;
+use glam::DVec3;
+use mesh_core::{MeshError, TriMesh};
 
 use crate::error::{Result, WaveletError};
 use crate::topology::{manifold_topology, Topology};
@@ -56,6 +57,9 @@ impl Hierarchy {
             if faces[j].iter().flatten().any(|&v| v as usize >= n) {
                 return Err(WaveletError::Dimension(format!("a face of level {j} refers to a vertex >= {n}")));
             }
+            if faces[j].iter().any(|&[a, b, c]| a == b || b == c || c == a) {
+                return Err(WaveletError::Dimension(format!("a face of level {j} repeats a vertex")));
+            }
             if j < levels {
                 if counts[j + 1] != n + parents[j].len() {
                     return Err(WaveletError::Dimension(format!("level {} vertex count is not n_j + odd", j + 1)));
@@ -83,6 +87,8 @@ impl Hierarchy {
         if faces.is_empty() {
             return Err(MeshError::Empty.into());
         }
+        // The checks of TriMesh: indices in range, no repeated vertex.
+        TriMesh::new(vec![DVec3::ZERO; vertex_count], faces.to_vec())?;
         check_size(faces.len(), levels)?;
         let mut counts = vec![vertex_count];
         let mut all_faces = vec![faces.to_vec()];
@@ -106,20 +112,40 @@ impl Hierarchy {
         self.counts.len() - 1
     }
 
-    /// Number of vertices `n_j` of K^j.
-    pub fn vertex_count(&self, level: usize) -> usize {
-        self.counts[level]
+    fn check_level(&self, level: usize, finest: usize) -> Result<()> {
+        if level > finest {
+            return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
+        }
+        Ok(())
     }
 
-    /// Faces of K^j over the first `n_j` hierarchical vertices.
-    pub fn faces(&self, level: usize) -> &[[u32; 3]] {
-        &self.faces[level]
+    /// Number of vertices `n_j` of K^j, `j <= J`.
+    pub fn vertex_count(&self, level: usize) -> Result<usize> {
+        self.check_level(level, self.levels())?;
+        Ok(self.counts[level])
+    }
+
+    /// Faces of K^j (`j <= J`) over the first `n_j` hierarchical vertices.
+    pub fn faces(&self, level: usize) -> Result<&[[u32; 3]]> {
+        self.check_level(level, self.levels())?;
+        Ok(&self.faces[level])
     }
 
     /// For `level < J`: the endpoints (in K^level) of the edge split by odd
-    /// vertex `n_level + i`, for each `i`.
-    pub fn parents(&self, level: usize) -> &[[u32; 2]] {
-        &self.parents[level]
+    /// vertex `n_level + i`, for each `i`, in the sorted order of the edges.
+    pub fn parents(&self, level: usize) -> Result<&[[u32; 2]]> {
+        if level >= self.levels() {
+            return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
+        }
+        Ok(&self.parents[level])
+    }
+
+    pub(crate) fn count(&self, level: usize) -> usize {
+        self.counts[level]
+    }
+
+    pub(crate) fn faces_of(&self, level: usize) -> &[[u32; 3]] {
+        &self.faces[level]
     }
 
     /// Half-edge topology of K^j for `j < J`, built on first use in O(F_j)
@@ -138,16 +164,25 @@ impl Hierarchy {
         self.to_input.as_deref()
     }
 
-    /// Index of hierarchical vertex `h` in the input mesh.
+    /// Index of hierarchical vertex `h` in the input mesh (`None` beyond n_J).
+    pub fn input_index(&self, h: usize) -> Option<usize> {
+        (h < self.counts[self.levels()]).then(|| self.input_of(h))
+    }
+
     #[inline]
-    pub fn input_index(&self, h: usize) -> usize {
+    pub(crate) fn input_of(&self, h: usize) -> usize {
         self.to_input.as_ref().map_or(h, |p| p[h] as usize)
     }
 
     /// Where each vertex of K^j goes in an output mesh of level j: vertices
     /// keep the relative order they have in the input mesh, so the output at
     /// level J has exactly the input order. Cost O(n_J).
-    pub fn output_order(&self, level: usize) -> Vec<u32> {
+    pub fn output_order(&self, level: usize) -> Result<Vec<u32>> {
+        self.check_level(level, self.levels())?;
+        Ok(self.order_of(level))
+    }
+
+    pub(crate) fn order_of(&self, level: usize) -> Vec<u32> {
         let n = self.counts[level];
         let Some(p) = &self.to_input else {
             return (0..n as u32).collect();
@@ -224,12 +259,17 @@ mod tests {
         let m = shapes::icosphere(0).unwrap();
         let h = Hierarchy::from_base(m.vertex_count(), m.faces(), 3).unwrap();
         for j in 0..=3 {
-            assert_eq!(h.vertex_count(j), 10 * 4usize.pow(j as u32) + 2);
-            assert_eq!(h.faces(j).len(), 20 * 4usize.pow(j as u32));
+            assert_eq!(h.vertex_count(j).unwrap(), 10 * 4usize.pow(j as u32) + 2);
+            assert_eq!(h.faces(j).unwrap().len(), 20 * 4usize.pow(j as u32));
         }
-        assert_eq!(h.faces(3), shapes::icosphere(3).unwrap().faces());
+        assert_eq!(h.faces(3).unwrap(), shapes::icosphere(3).unwrap().faces());
+        assert!(h.faces(4).is_err() && h.parents(3).is_err() && h.vertex_count(9).is_err());
+        assert_eq!(h.input_index(641), Some(641));
+        assert_eq!(h.input_index(642), None);
         assert!(Hierarchy::from_base(3, &[[0, 1, 2]], 40).is_err());
         assert!(Hierarchy::from_base(3, &[], 1).is_err());
+        assert!(Hierarchy::from_base(3, &[[0, 1, 3]], 1).is_err());
+        assert!(Hierarchy::from_base(3, &[[0, 1, 1]], 1).is_err());
     }
 
     #[test]
@@ -237,6 +277,7 @@ mod tests {
         assert!(Hierarchy::new(vec![3], vec![vec![[0, 1, 3]]], vec![], None).is_err());
         assert!(Hierarchy::new(vec![3], vec![vec![[0, 1, 2]]], vec![], Some(vec![0, 0, 1])).is_err());
         let h = Hierarchy::new(vec![3], vec![vec![[0, 1, 2]]], vec![], Some(vec![2, 0, 1])).unwrap();
-        assert_eq!(h.output_order(0), vec![2, 0, 1]);
+        assert_eq!(h.output_order(0).unwrap(), vec![2, 0, 1]);
+        assert!(Hierarchy::new(vec![3], vec![vec![[0, 1, 1]]], vec![], None).is_err());
     }
 }

@@ -69,8 +69,3 @@ pub use scheme::{Scheme, WaveletKind};
 pub use subdivide::subdivide;
 
 pub use glam;
-
-#[doc(hidden)]
-pub fn __topology_edges(n: usize, faces: &[[u32; 3]]) -> usize {
-    topology::Topology::new(n, faces).map_or(0, |t| t.edge_count())
-}

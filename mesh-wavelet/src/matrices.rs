@@ -9,6 +9,7 @@
 
 use mesh_core::sprs::{CsMat, TriMat};
 
+use crate::error::{Result, WaveletError};
 use crate::filter::{FilterBank, LevelFilter};
 
 /// The four matrices of one level of a filter bank (seed figure 2.12).
@@ -28,7 +29,7 @@ impl FilterBank {
     /// The matrices P, Q, A, B of level `j -> j + 1` (`j < J`), as products of
     /// the sparse lifting steps. Cost O(n_{j+1}) (a few nonzeros per row).
     pub fn matrices(&self, j: usize) -> Option<FilterMatrices> {
-        (j < self.levels()).then(|| level_matrices(self.level(j)))
+        self.level(j).map(level_matrices)
     }
 }
 
@@ -122,8 +123,11 @@ fn split_rows(m: &CsMat<f64>, at: usize) -> (CsMat<f64>, CsMat<f64>) {
 /// Gram matrix `G_ik = <phi^j_i, phi^j_k>` where every face of the base mesh
 /// has unit area, so each of the `faces` of level `level` has area `4^-level`
 /// (`A/6` on the diagonal per incident face, `A/12` per face off it).
-/// Cost O(F).
-pub fn inner_product_matrix(vertex_count: usize, faces: &[[u32; 3]], level: usize) -> CsMat<f64> {
+/// Errors when a face refers to a vertex beyond `vertex_count`. Cost O(F).
+pub fn inner_product_matrix(vertex_count: usize, faces: &[[u32; 3]], level: usize) -> Result<CsMat<f64>> {
+    if let Some(v) = faces.iter().flatten().find(|&&v| v as usize >= vertex_count) {
+        return Err(WaveletError::Dimension(format!("a face refers to vertex {v} of {vertex_count}")));
+    }
     let area = 0.25f64.powi(level.min(1000) as i32);
     let mut t = TriMat::with_capacity((vertex_count, vertex_count), 9 * faces.len());
     for f in faces {
@@ -134,5 +138,5 @@ pub fn inner_product_matrix(vertex_count: usize, faces: &[[u32; 3]], level: usiz
             }
         }
     }
-    t.to_csr()
+    Ok(t.to_csr())
 }

@@ -73,7 +73,7 @@ impl Multiresolution {
     /// Analysis of `positions` (in input order, [`Hierarchy::to_input`]) on a
     /// known hierarchy with a prebuilt filter bank of that hierarchy. Cost O(n).
     pub fn from_parts(hierarchy: Arc<Hierarchy>, bank: Arc<FilterBank>, positions: &[DVec3]) -> Result<Self> {
-        let n = hierarchy.vertex_count(hierarchy.levels());
+        let n = hierarchy.count(hierarchy.levels());
         if positions.len() != n || bank.levels() != hierarchy.levels() || (bank.levels() > 0 && bank.len() != n) {
             return Err(WaveletError::Dimension(format!(
                 "{} positions, a hierarchy of {n} vertices and a filter bank of {} levels",
@@ -82,7 +82,7 @@ impl Multiresolution {
             )));
         }
         check_finite(positions)?;
-        let mut data: Vec<DVec3> = (0..n).map(|h| positions[hierarchy.input_index(h)]).collect();
+        let mut data: Vec<DVec3> = (0..n).map(|h| positions[hierarchy.input_of(h)]).collect();
         bank.analyze(&mut data)?;
         Ok(Self { hierarchy, bank, data })
     }
@@ -105,14 +105,14 @@ impl Multiresolution {
     /// The base positions `v^0` (hierarchical order, that of [`Multiresolution::level`]`(0)`
     /// up to [`Hierarchy::output_order`]).
     pub fn base_positions(&self) -> &[DVec3] {
-        &self.data[..self.hierarchy.vertex_count(0)]
+        &self.data[..self.hierarchy.count(0)]
     }
 
     /// Multiresolution editing: replaces the base positions (in the vertex
     /// order of `level(0)`), keeping every wavelet coefficient, so the details
     /// follow the new coarse shape on synthesis. Cost O(n_0).
     pub fn set_base_positions(&mut self, positions: &[DVec3]) -> Result<()> {
-        let n0 = self.hierarchy.vertex_count(0);
+        let n0 = self.hierarchy.count(0);
         if positions.len() != n0 {
             return Err(WaveletError::Dimension(format!(
                 "{} positions for a base mesh of {n0} vertices",
@@ -120,7 +120,7 @@ impl Multiresolution {
             )));
         }
         check_finite(positions)?;
-        let order = self.hierarchy.output_order(0);
+        let order = self.hierarchy.order_of(0);
         for (h, &o) in order.iter().enumerate() {
             self.data[h] = positions[o as usize];
         }
@@ -157,7 +157,7 @@ impl Multiresolution {
         if level >= self.levels() {
             return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
         }
-        Ok(self.hierarchy.vertex_count(level)..self.hierarchy.vertex_count(level + 1))
+        Ok(self.hierarchy.count(level)..self.hierarchy.count(level + 1))
     }
 
     /// Positions of K^j (hierarchical order): synthesis up to level j, the
@@ -166,7 +166,7 @@ impl Multiresolution {
         if level > self.levels() {
             return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
         }
-        let mut data = self.data[..self.hierarchy.vertex_count(level)].to_vec();
+        let mut data = self.data[..self.hierarchy.count(level)].to_vec();
         self.bank.synthesize_to(&mut data, level)?;
         Ok(data)
     }
@@ -213,7 +213,7 @@ impl Multiresolution {
     pub fn statistics(&self) -> Vec<LevelStatistics> {
         (0..self.levels())
             .map(|j| {
-                let w = &self.data[self.hierarchy.vertex_count(j)..self.hierarchy.vertex_count(j + 1)];
+                let w = &self.data[self.hierarchy.count(j)..self.hierarchy.count(j + 1)];
                 let count = w.len();
                 let (sum, sum2, max) = w
                     .iter()
@@ -227,12 +227,12 @@ impl Multiresolution {
 
     /// Mesh of level j from positions in hierarchical order.
     fn mesh_from(&self, level: usize, positions: &[DVec3]) -> std::result::Result<TriMesh, MeshError> {
-        let order = self.hierarchy.output_order(level);
+        let order = self.hierarchy.order_of(level);
         let mut out = vec![DVec3::ZERO; positions.len()];
         for (h, &o) in order.iter().enumerate() {
             out[o as usize] = positions[h];
         }
-        let faces = self.hierarchy.faces(level).iter().map(|f| f.map(|v| order[v as usize])).collect();
+        let faces = self.hierarchy.faces_of(level).iter().map(|f| f.map(|v| order[v as usize])).collect();
         TriMesh::new(out, faces)
     }
 }

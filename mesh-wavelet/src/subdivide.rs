@@ -54,7 +54,7 @@ fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
     let mut positions = Vec::with_capacity(mesh.vertex_count() + parents.len());
     positions.extend_from_slice(mesh.positions());
     positions.resize(mesh.vertex_count() + parents.len(), DVec3::ZERO);
-    filter.synthesize(&mut positions);
+    filter.synthesize(&mut positions)?;
     let faces = split_faces(&topo, mesh.faces(), mesh.vertex_count() as u32);
     Ok(TriMesh::new(positions, faces)?)
 }

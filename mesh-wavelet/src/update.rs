@@ -20,11 +20,20 @@
 //! and butterfly the same weights are used (the hat functions then
 //! approximate their smooth scaling functions).
 
+use std::collections::HashMap;
+
 use crate::rules::ring_with_face_counts;
-use crate::topology::Topology;
+use crate::topology::{Kind, Topology};
 
 /// Scratch space for [`update_weights`], reused across the odd vertices of
 /// one level: `slot_of[v]` is valid when `stamp[v]` equals the current call.
+///
+/// The weights depend only on the combinatorics of the diamond's
+/// neighbourhood, so they are memoised by a byte signature of it: the rings
+/// are walked from a canonical start, and the signature records, for each
+/// stencil vertex, its face count and, for each ring entry, the local slot
+/// of the neighbour and the face count of the edge. Equal signatures give
+/// equal least-squares systems; a semi-regular mesh has a handful of them.
 pub(crate) struct UpdateScratch {
     slots: Vec<u32>,
     rows: Vec<[f64; 4]>,
@@ -32,6 +41,8 @@ pub(crate) struct UpdateScratch {
     stamp: Vec<u32>,
     slot_of: Vec<u32>,
     call: u32,
+    signature: Vec<u8>,
+    cache: HashMap<Vec<u8>, Option<[f64; 4]>>,
 }
 
 impl UpdateScratch {
@@ -44,6 +55,8 @@ impl UpdateScratch {
             stamp: vec![u32::MAX; n],
             slot_of: vec![0; n],
             call: 0,
+            signature: Vec::with_capacity(128),
+            cache: HashMap::new(),
         }
     }
 
@@ -96,26 +109,57 @@ pub(crate) fn update_weights(
         size += 1;
     }
     scratch.begin();
-    // Column k of M: <phi^j_k, phi^j_i> for i in the closed ring of stencil vertex k.
+    scratch.signature.clear();
+    scratch.signature.push(size as u8);
+    let mut cacheable = true;
+    // Column k of M: <phi^j_k, phi^j_i> for i in the closed ring of stencil
+    // vertex k, walked from a canonical neighbour (b for a; a for b and c; b for d).
     for k in 0..size {
         let v = stencil[k].0;
-        let faces = topo.out(v).len() as f64;
+        let faces = topo.out(v).len();
         let s = scratch.slot(v);
-        scratch.rows[s][k] += 4.0 * faces / 6.0;
+        scratch.rows[s][k] += 4.0 * faces as f64 / 6.0;
         let mut ring = std::mem::take(&mut scratch.ring);
         ring_with_face_counts(topo, v, &mut ring);
+        if topo.kind(v) == Kind::Interior {
+            let start = if k == 0 || k == 3 { b } else { a };
+            if let Some(p) = ring.iter().position(|r| r.0 == start) {
+                ring.rotate_left(p);
+            }
+        }
+        cacheable &= faces < 256 && ring.len() < 256;
+        scratch.signature.extend([faces as u8, ring.len() as u8, (topo.kind(v) == Kind::Boundary) as u8]);
         for &(w, fe) in &ring {
             let s = scratch.slot(w);
             scratch.rows[s][k] += fe as f64 / 3.0;
+            cacheable &= s < 256;
+            scratch.signature.extend([s as u8, fe]);
         }
         scratch.ring = ring;
     }
-    // Normal equations.
+    let weights = match cacheable.then(|| scratch.cache.get(&scratch.signature)).flatten() {
+        Some(&w) => w,
+        None => {
+            let w = solve_normal_equations(scratch, &stencil[..size]);
+            if cacheable {
+                scratch.cache.insert(scratch.signature.clone(), w);
+            }
+            w
+        }
+    };
+    if let Some(s) = weights {
+        row.extend(stencil[..size].iter().zip(s).map(|(st, w)| (st.0, w)));
+    }
+}
+
+/// The least-squares weights from the assembled rows of M.
+fn solve_normal_equations(scratch: &UpdateScratch, stencil: &[(u32, f64)]) -> Option<[f64; 4]> {
+    let size = stencil.len();
     let mut mtm = [[0.0; 4]; 4];
     let mut rhs = [0.0; 4];
     for (slot, r) in scratch.rows.iter().enumerate() {
         let v = scratch.slots[slot];
-        let g = stencil[..size].iter().find(|s| s.0 == v).map_or(0.0, |s| s.1);
+        let g = stencil.iter().find(|s| s.0 == v).map_or(0.0, |s| s.1);
         for k in 0..size {
             rhs[k] += r[k] * g;
             for l in 0..size {
@@ -123,9 +167,7 @@ pub(crate) fn update_weights(
             }
         }
     }
-    if let Some(s) = solve_spd(&mut mtm, &mut rhs, size) {
-        row.extend(stencil[..size].iter().zip(s).map(|(st, w)| (st.0, w)));
-    }
+    solve_spd(&mut mtm, &mut rhs, size)
 }
 
 /// Solves a small symmetric positive definite system by Cholesky, `None`

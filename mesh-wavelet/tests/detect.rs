@@ -27,9 +27,9 @@ fn face_set(faces: impl IntoIterator<Item = [u32; 3]>) -> Vec<[u32; 3]> {
 /// Splitting the detected base mesh J times gives back the input faces.
 fn assert_reproduces(h: &Hierarchy, mesh: &TriMesh) {
     let j = h.levels();
-    let again = Hierarchy::from_base(h.vertex_count(0), h.faces(0), j).unwrap();
+    let again = Hierarchy::from_base(h.vertex_count(0).unwrap(), h.faces(0).unwrap(), j).unwrap();
     let to_input = h.to_input().unwrap();
-    let rebuilt = face_set(again.faces(j).iter().map(|f| f.map(|v| to_input[v as usize])));
+    let rebuilt = face_set(again.faces(j).unwrap().iter().map(|f| f.map(|v| to_input[v as usize])));
     assert_eq!(rebuilt, face_set(mesh.faces().iter().copied()));
 }
 
@@ -53,7 +53,7 @@ fn recovers_base_mesh_and_levels_after_shuffling() {
                 continue;
             }
             assert_eq!(h.levels(), levels, "{name} at {levels} levels");
-            assert_eq!((h.vertex_count(0), h.faces(0).len()), (n0, base.face_count()), "{name}");
+            assert_eq!((h.vertex_count(0).unwrap(), h.faces(0).unwrap().len()), (n0, base.face_count()), "{name}");
             // The base vertices are the original ones (vertices 0..n0 of the
             // subdivided mesh), and the base faces the original faces.
             let to_input = h.to_input().unwrap();
@@ -62,11 +62,11 @@ fn recovers_base_mesh_and_levels_after_shuffling() {
             let mut expected: Vec<u32> = new_index[..n0].to_vec();
             expected.sort_unstable();
             assert_eq!(base_inputs, expected, "{name}");
-            let detected = face_set(h.faces(0).iter().map(|f| f.map(|v| to_input[v as usize])));
+            let detected = face_set(h.faces(0).unwrap().iter().map(|f| f.map(|v| to_input[v as usize])));
             let truth = face_set(base.faces().iter().map(|f| f.map(|v| new_index[v as usize])));
             assert_eq!(detected, truth, "{name}");
             // Orientation is kept: each base face appears with its own cyclic order.
-            for f in h.faces(0) {
+            for f in h.faces(0).unwrap() {
                 let t = f.map(|v| to_input[v as usize]);
                 let same = base
                     .faces()
@@ -110,9 +110,9 @@ fn regular_tori_reverse_as_far_as_they_can() {
     let (m, _) = shuffled(&m, 3);
     let h = detect(&m, &DetectOptions::default()).unwrap();
     assert_reproduces(&h, &m);
-    assert_eq!((h.levels(), h.vertex_count(0)), (2, 18));
+    assert_eq!((h.levels(), h.vertex_count(0).unwrap()), (2, 18));
     let h1 = detect(&m, &DetectOptions { max_levels: 1 }).unwrap();
-    assert_eq!((h1.levels(), h1.vertex_count(0)), (1, 72));
+    assert_eq!((h1.levels(), h1.vertex_count(0).unwrap()), (1, 72));
 }
 
 #[test]
@@ -122,9 +122,9 @@ fn cgal_holes_and_mushroom_are_twice_split_meshes() {
     for (name, n0, f0, chi, loops) in [("cgal_holes.off", 292, 518, -5, 7), ("cgal_mushroom.off", 153, 288, 1, 1)] {
         let Some(m) = real_mesh(name) else { return };
         let h = detect(&m, &DetectOptions::default()).unwrap();
-        assert_eq!((h.levels(), h.vertex_count(0), h.faces(0).len()), (2, n0, f0), "{name}");
+        assert_eq!((h.levels(), h.vertex_count(0).unwrap(), h.faces(0).unwrap().len()), (2, n0, f0), "{name}");
         assert_reproduces(&h, &m);
-        let base = TriMesh::new(vec![DVec3::ZERO; n0], h.faces(0).to_vec()).unwrap();
+        let base = TriMesh::new(vec![DVec3::ZERO; n0], h.faces(0).unwrap().to_vec()).unwrap();
         let c = base.connectivity();
         assert_eq!((c.euler_characteristic(), c.boundary_loop_count()), (chi, Some(loops)), "{name}");
     }
