@@ -33,6 +33,8 @@ enum Command {
     Render(commands::render::Args),
     /// Runs every analysis on a mesh and writes a JSON report and viewer-ready files.
     Report(commands::report::Args),
+    /// Gaussian, mean and principal curvatures and directions, to a PLY file.
+    Curvature(commands::curvature::Args),
 }
 
 fn main() {
@@ -44,6 +46,7 @@ fn main() {
         Command::Generate(args) => commands::generate::run(args),
         Command::Render(args) => commands::render::run(args),
         Command::Report(args) => commands::report::run(args),
+        Command::Curvature(args) => commands::curvature::run(args),
     };
     if let Err(e) = result {
         eprintln!("mesh: error: {e}");

@@ -7,13 +7,27 @@ use std::time::Instant;
 use mesh_core::shapes;
 use mesh_curvature::*;
 
-/// CPU time of the calling thread in ns (Linux `schedstat`), which stays
-/// meaningful on a loaded machine; 0 where unavailable.
+/// CPU time of the calling thread in ns (`clock_gettime` with
+/// `CLOCK_THREAD_CPUTIME_ID`), which stays meaningful on a loaded machine
+/// for single-threaded runs (`--no-default-features`).
 fn thread_cpu_ns() -> u64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next().and_then(|x| x.parse().ok()))
-        .unwrap_or(0)
+    #[repr(C)]
+    struct Timespec {
+        sec: i64,
+        nsec: i64,
+    }
+    extern "C" {
+        fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
+    }
+    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+    let mut ts = Timespec { sec: 0, nsec: 0 };
+    // SAFETY: clock_gettime writes one timespec into the valid pointer.
+    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    if rc == 0 {
+        ts.sec as u64 * 1_000_000_000 + ts.nsec as u64
+    } else {
+        0
+    }
 }
 
 /// Best wall time and best calling-thread CPU time over `reps` runs, in ms.

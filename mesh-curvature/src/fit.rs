@@ -243,14 +243,17 @@ fn powers<const N: usize>(t: f64) -> [f64; N] {
 }
 
 /// Fits the height field at one vertex; `None` when the system is rank
-/// deficient. Coordinates are scaled by the mean neighbour distance for
+/// deficient. Coordinates are scaled by the RMS neighbour distance for
 /// conditioning.
 fn fit_vertex(p: &[DVec3], nv: &[DVec3], centre: usize, ring: &[u32], options: &FitOptions) -> Option<LocalTensor> {
     let n = nv[centre];
     let (t1, t2) = tangent_basis(n);
     let c = p[centre];
     let neighbours = ring.get(1..).unwrap_or(&[]);
-    let scale = neighbours.iter().map(|&q| p[q as usize].distance(c)).sum::<f64>() / neighbours.len().max(1) as f64;
+    // Root-mean-square neighbour distance: one square root per fit.
+    let mean_square =
+        neighbours.iter().map(|&q| p[q as usize].distance_squared(c)).sum::<f64>() / neighbours.len().max(1) as f64;
+    let scale = mean_square.sqrt();
     if scale.is_nan() || scale <= 0.0 {
         return None;
     }

@@ -61,9 +61,10 @@ fn face_tensor(p: [DVec3; 3], n: [DVec3; 3]) -> Option<FaceTensor> {
 
 /// The face tensor expressed in the vertex frame `(t1, t2)` of normal `n`:
 /// the frame is rotated onto the face plane, then the form evaluated on it.
-fn to_vertex_frame(face: &FaceTensor, n: DVec3, t1: DVec3, t2: DVec3) -> Sym2 {
+fn to_vertex_frame(face: &FaceTensor, n: DVec3, t1: DVec3) -> Sym2 {
+    // A rotation maps t2 = n x t1 to n_f x R t1: one rotation suffices.
     let r1 = rotate_between(n, face.normal, t1);
-    let r2 = rotate_between(n, face.normal, t2);
+    let r2 = face.normal.cross(r1);
     let x = [r1.dot(face.u), r1.dot(face.v)];
     let y = [r2.dot(face.u), r2.dot(face.v)];
     Sym2::new(face.form.form(x, x), face.form.form(x, y), face.form.form(y, y))
@@ -92,7 +93,7 @@ pub(crate) fn estimate(mesh: &TriMesh, normals: Normals) -> Vec<LocalTensor> {
         for h in conn.outgoing(mesh_core::VertexId::new(i)) {
             if let Some(face) = &per_face[h.face().idx()] {
                 let w = face.corner_weight[h.corner()];
-                sum = sum.add(to_vertex_frame(face, n, local.t1, local.t2).scaled(w));
+                sum = sum.add(to_vertex_frame(face, n, local.t1).scaled(w));
                 weight += w;
             }
         }

@@ -2,6 +2,7 @@
 
 pub mod clean;
 pub mod convert;
+pub mod curvature;
 pub mod generate;
 pub mod info;
 pub mod render;

@@ -10,6 +10,7 @@
 //! adds its operations in one module registered in [`GROUPS`].
 
 mod core;
+mod curvature;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -37,7 +38,7 @@ impl<'a> Operation<'a> {
 /// Every group of operations: a function from the mesh file and its content
 /// to the operations.
 type Group = for<'a> fn(&'a std::path::Path, &'a MeshData) -> Vec<Operation<'a>>;
-const GROUPS: &[Group] = &[core::operations];
+const GROUPS: &[Group] = &[core::operations, curvature::operations];
 
 /// Arguments of `cargo xtask bench`.
 #[derive(Debug, clap::Args)]

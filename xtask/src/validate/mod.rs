@@ -5,6 +5,7 @@
 //! fixed by analysis or by the issue, never by the implementation.
 
 mod core;
+mod curvature;
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +17,7 @@ use crate::Result;
 type Group = (&'static str, fn(&mut Validator));
 
 /// Every group of checks, in the order they run.
-const GROUPS: &[Group] = &[("core", core::run)];
+const GROUPS: &[Group] = &[("core", core::run), ("curvature", curvature::run)];
 
 /// Arguments of `cargo xtask validate`.
 #[derive(Debug, clap::Args)]
