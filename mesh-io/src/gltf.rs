@@ -26,7 +26,7 @@ use std::io::Write;
 use std::path::Path;
 
 use ::gltf::json::{self, accessor::ComponentType, mesh::Semantic, validation::Checked};
-use glam::{DMat3, DMat4, DQuat, DVec2, DVec3};
+use glam::{DMat3, DMat4, DQuat, DVec2, DVec3, Vec3};
 
 use crate::data::{tri_mesh, MeshData, MeshView, ReadReport};
 use crate::error::{excerpt, IoError, Location, Result};
@@ -177,15 +177,15 @@ const BASE64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz
 
 /// Standard base64 with padding.
 fn base64_encode(data: &[u8]) -> String {
-    let mut out = String::with_capacity(data.len().div_ceil(3) * 4);
+    let mut out = Vec::with_capacity(data.len().div_ceil(3) * 4);
     for chunk in data.chunks(3) {
         let n = chunk.iter().enumerate().fold(0u32, |n, (k, &b)| n | u32::from(b) << (16 - 8 * k));
         for k in 0..4 {
-            let c = if k <= chunk.len() { BASE64[(n >> (18 - 6 * k) & 63) as usize] } else { b'=' };
-            out.push(char::from(c));
+            out.push(if k <= chunk.len() { BASE64[(n >> (18 - 6 * k) & 63) as usize] } else { b'=' });
         }
     }
-    out
+    // Only characters of the base64 alphabet were pushed.
+    String::from_utf8(out).unwrap_or_default()
 }
 
 /// Standard base64, padding optional; `None` on any other character.
@@ -260,9 +260,36 @@ fn local_transform(node: &json::Node) -> DMat4 {
     DMat4::from_scale_rotation_translation(s, r, t)
 }
 
-/// The values of an accessor as `f64` (normalized integers mapped to
-/// `[0, 1]` or `[-1, 1]`), `dims` per element, with every offset checked.
-fn accessor(root: &json::Root, buffers: &[Cow<'_, [u8]>], index: usize, dims: &[usize]) -> Result<(Vec<f64>, usize)> {
+/// The elements of an accessor, bounds-checked once: `get(i, k)` is
+/// component `k` of element `i` as `f64` (normalized integers mapped to
+/// `[0, 1]` or `[-1, 1]`).
+struct Elements<'b> {
+    data: &'b [u8],
+    component: ComponentType,
+    normalized: bool,
+    dims: usize,
+    count: usize,
+    offset: usize,
+    stride: usize,
+}
+
+impl Elements<'_> {
+    #[inline]
+    fn get(&self, i: usize, k: usize) -> f64 {
+        let size = self.component.size();
+        let at = self.offset + i * self.stride + k * size;
+        decode(self.component, &self.data[at..at + size], self.normalized)
+    }
+
+    /// Every element as `[f64; N]` (`N <= dims`).
+    fn rows<const N: usize>(&self) -> impl Iterator<Item = [f64; N]> + '_ {
+        (0..self.count).map(|i| std::array::from_fn(|k| self.get(i, k)))
+    }
+}
+
+/// Accessor `index`, which must have one of `dims` components per element
+/// and lie within its buffer view and buffer.
+fn accessor<'b>(root: &json::Root, buffers: &'b [Cow<'_, [u8]>], index: usize, dims: &[usize]) -> Result<Elements<'b>> {
     let bad = |what: String| IoError::syntax(loc(), what, format!("accessor {index}").as_bytes());
     let acc = root.accessors.get(index).ok_or_else(|| bad("an accessor".into()))?;
     if acc.sparse.is_some() {
@@ -277,14 +304,8 @@ fn accessor(root: &json::Root, buffers: &[Cow<'_, [u8]>], index: usize, dims: &[
     }
     let view =
         acc.buffer_view.and_then(|v| root.buffer_views.get(v.value())).ok_or_else(|| bad("a buffer view".into()))?;
-    let buffer = buffers.get(view.buffer.value()).ok_or_else(|| bad("a buffer".into()))?;
-    let start = view.byte_offset.map_or(0, |o| o.0);
-    let data = start
-        .checked_add(view.byte_length.0)
-        .and_then(|end| buffer.get(usize::try_from(start).ok()?..usize::try_from(end).ok()?))
-        .ok_or_else(|| IoError::truncated(loc(), format!("buffer view {} within its buffer", view.buffer.value())))?;
-    let size = component.size();
-    let elem = size * n;
+    let data = view_data(view, buffers).ok_or_else(|| bad("a buffer view within its buffer".into()))?;
+    let elem = component.size() * n;
     let stride = view.byte_stride.map_or(elem, |s| s.0).max(elem);
     let (count, offset) = (acc.count.0, acc.byte_offset.map_or(0, |o| o.0));
     let need = count
@@ -293,16 +314,19 @@ fn accessor(root: &json::Root, buffers: &[Cow<'_, [u8]>], index: usize, dims: &[
     if need.is_none_or(|need| need > data.len() as u64) {
         return Err(IoError::truncated(loc(), format!("accessor {index}: {count} elements within its buffer view")));
     }
-    let mut values = Vec::with_capacity(count as usize * n);
-    for i in 0..count as usize {
-        let base = offset as usize + i * stride;
-        for k in 0..n {
-            values.push(decode(component, &data[base + k * size..base + (k + 1) * size], acc.normalized));
-        }
-    }
-    Ok((values, n))
+    let (count, offset) = (count as usize, offset as usize);
+    Ok(Elements { data, component, normalized: acc.normalized, dims: n, count, offset, stride })
 }
 
+/// The bytes of a buffer view, if they lie within its buffer.
+fn view_data<'b>(view: &json::buffer::View, buffers: &'b [Cow<'_, [u8]>]) -> Option<&'b [u8]> {
+    let buffer = buffers.get(view.buffer.value())?;
+    let start = view.byte_offset.map_or(0, |o| o.0);
+    let end = start.checked_add(view.byte_length.0)?;
+    buffer.get(usize::try_from(start).ok()?..usize::try_from(end).ok()?)
+}
+
+#[inline]
 fn decode(component: ComponentType, b: &[u8], normalized: bool) -> f64 {
     let (x, scale) = match component {
         ComponentType::I8 => (f64::from(b[0] as i8), 127.0),
@@ -319,8 +343,8 @@ fn decode(component: ComponentType, b: &[u8], normalized: bool) -> f64 {
     }
 }
 
-/// Reads a primitive's attribute, if present: values and components per element.
-type AttributeReader<'a> = dyn Fn(&Semantic, &[usize]) -> Result<Option<(Vec<f64>, usize)>> + 'a;
+/// Reads a primitive's attribute, if present.
+type AttributeReader<'a, 'b> = dyn Fn(&Semantic, &[usize]) -> Result<Option<Elements<'b>>> + 'a;
 
 /// Primitives gathered into one mesh; an attribute list becomes `None` as
 /// soon as a primitive lacks it.
@@ -338,39 +362,34 @@ struct Parts {
 
 impl Parts {
     fn add(&mut self, root: &json::Root, buffers: &[Cow<'_, [u8]>], p: &json::mesh::Primitive, m: DMat4) -> Result<()> {
+        use json::mesh::Mode;
         let mode = match p.mode {
             Checked::Valid(mode) => mode,
             Checked::Invalid => return Err(IoError::syntax(loc(), "a primitive mode", b"")),
         };
-        let get = |s: &Semantic, dims: &[usize]| -> Result<Option<(Vec<f64>, usize)>> {
+        let get = |s: &Semantic, dims: &[usize]| {
             p.attributes.get(&Checked::Valid(s.clone())).map(|a| accessor(root, buffers, a.value(), dims)).transpose()
         };
-        use json::mesh::Mode;
-        let (Some((xyz, _)), true) = (
-            get(&Semantic::Positions, &[3])?,
-            matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan),
-        ) else {
+        let triangles = matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan);
+        let (Some(xyz), true) = (get(&Semantic::Positions, &[3])?, triangles) else {
             self.report.note("primitives that are not triangles, or have no positions, skipped");
             return Ok(());
         };
-        let nv = xyz.len() / 3;
-        let base = self.positions.len();
-        for c in xyz.chunks_exact(3) {
-            let p = m.transform_point3(DVec3::new(c[0], c[1], c[2]));
+        let (nv, base) = (xyz.count, self.positions.len());
+        for c in xyz.rows::<3>() {
+            let p = m.transform_point3(DVec3::from_array(c));
             if !p.is_finite() {
                 return Err(IoError::NonFinite { at: loc(), vertex: self.positions.len() });
             }
             self.positions.push(p);
         }
-        let indices = match p.indices {
-            Some(i) => accessor(root, buffers, i.value(), &[1])?.0,
-            None => (0..nv).map(|i| i as f64).collect(),
-        };
+        let indices = p.indices.map(|i| accessor(root, buffers, i.value(), &[1])).transpose()?;
+        let corner = |c: usize| indices.as_ref().map_or(c as f64, |e| e.get(c, 0));
         let flip = m.determinant() < 0.0;
-        for (t, corners) in triangles(mode, indices.len()).enumerate() {
+        for (t, corners) in corner_triples(mode, indices.as_ref().map_or(nv, |e| e.count)).enumerate() {
             let mut tri = [0u32; 3];
             for (v, &c) in tri.iter_mut().zip(&corners) {
-                let i = indices[c];
+                let i = corner(c);
                 if !(0.0..nv as f64).contains(&i) {
                     let face = self.faces.len() + t;
                     return Err(IoError::Index { at: loc(), face, what: "vertex", index: i as i64, count: nv });
@@ -388,18 +407,24 @@ impl Parts {
         Ok(())
     }
 
-    fn attributes(&mut self, p: &json::mesh::Primitive, get: &AttributeReader<'_>, nv: usize, m: DMat4) -> Result<()> {
+    fn attributes(
+        &mut self,
+        p: &json::mesh::Primitive,
+        get: &AttributeReader<'_, '_>,
+        nv: usize,
+        m: DMat4,
+    ) -> Result<()> {
         let first = self.primitives == 0;
         let normal_matrix = DMat3::from_mat4(m).inverse().transpose();
-        let normals = get(&Semantic::Normals, &[3])?.map(|(v, _)| {
-            v.chunks_exact(3).map(|c| (normal_matrix * DVec3::new(c[0], c[1], c[2])).normalize_or_zero()).collect()
-        });
+        let normals = get(&Semantic::Normals, &[3])?
+            .map(|e| e.rows::<3>().map(|c| (normal_matrix * DVec3::from_array(c)).normalize_or_zero()).collect());
         merge(&mut self.normals, normals, first, nv);
-        let uvs = get(&Semantic::TexCoords(0), &[2])?
-            .map(|(v, _)| v.chunks_exact(2).map(|c| DVec2::new(c[0], 1.0 - c[1])).collect());
+        let uvs =
+            get(&Semantic::TexCoords(0), &[2])?.map(|e| e.rows::<2>().map(|[u, v]| DVec2::new(u, 1.0 - v)).collect());
         merge(&mut self.uvs, uvs, first, nv);
-        let colors = get(&Semantic::Colors(0), &[3, 4])?.map(|(v, n)| {
-            v.chunks_exact(n).map(|c| [c[0], c[1], c[2], c.get(3).copied().unwrap_or(1.0)].map(|x| x as f32)).collect()
+        let colors = get(&Semantic::Colors(0), &[3, 4])?.map(|e| {
+            let alpha = |i: usize| if e.dims == 4 { e.get(i, 3) } else { 1.0 };
+            (0..e.count).map(|i| [e.get(i, 0), e.get(i, 1), e.get(i, 2), alpha(i)].map(|x| x as f32)).collect()
         });
         merge(&mut self.colors, colors, first, nv);
         if first {
@@ -412,8 +437,8 @@ impl Parts {
         let mut scalars = Vec::with_capacity(self.scalars.len());
         for (name, mut values) in std::mem::take(&mut self.scalars) {
             match get(&Semantic::Extras(name.clone()), &[1])? {
-                Some((v, _)) if v.len() == nv => {
-                    values.extend(v);
+                Some(e) if e.count == nv => {
+                    values.extend(e.rows::<1>().map(|[x]| x));
                     scalars.push((name, values));
                 }
                 _ => self.report.note(format!("scalar `{name}` dropped: not every primitive has it")),
@@ -444,7 +469,7 @@ fn merge<T>(all: &mut Option<Vec<T>>, part: Option<Vec<T>>, first: bool, nv: usi
 }
 
 /// Corner numbers of the triangles of a primitive with `n` indices.
-fn triangles(mode: json::mesh::Mode, n: usize) -> Box<dyn Iterator<Item = [usize; 3]>> {
+fn corner_triples(mode: json::mesh::Mode, n: usize) -> Box<dyn Iterator<Item = [usize; 3]>> {
     use json::mesh::Mode;
     match mode {
         Mode::TriangleStrip => {
@@ -509,8 +534,9 @@ impl Split {
         Self { source, faces, uvs: Some(uvs) }
     }
 
-    fn gather<T: Copy>(&self, values: &[T]) -> Vec<T> {
-        self.source.iter().map(|&v| values[v as usize]).collect()
+    /// The values of the written vertices.
+    fn each<'v, T>(&'v self, values: &'v [T]) -> impl Iterator<Item = &'v T> + 'v {
+        self.source.iter().map(move |&v| &values[v as usize])
     }
 }
 
@@ -520,42 +546,39 @@ fn document(view: &MeshView<'_>, embed: bool) -> Result<(json::Root, Vec<u8>)> {
     view.check()?;
     let split = Split::new(view);
     let mut doc = Doc::default();
+    let floats_per_vertex =
+        [(true, 3), (view.normals.is_some(), 3), (split.uvs.is_some(), 2), (view.colors.is_some(), 4)]
+            .iter()
+            .map(|&(on, n)| usize::from(on) * n)
+            .sum::<usize>()
+            + view.scalars.len();
+    doc.bin.reserve(4 * (split.source.len() * floats_per_vertex + split.faces.len() * 3));
     let mut attributes = BTreeMap::new();
-    let positions = split.gather(view.mesh.positions());
-    if !positions.is_empty() {
-        let pos = positions.iter().map(|p| p.as_vec3().to_array()).collect::<Vec<_>>();
-        let min = (0..3).map(|k| pos.iter().map(|p| p[k]).fold(f32::INFINITY, f32::min)).collect::<Vec<_>>();
-        let max = (0..3).map(|k| pos.iter().map(|p| p[k]).fold(f32::NEG_INFINITY, f32::max)).collect::<Vec<_>>();
-        let bounds = Some((json::Value::from(min), json::Value::from(max)));
-        attributes.insert(Semantic::Positions, doc.floats(pos.as_flattened(), 3, bounds));
+    if !split.source.is_empty() {
+        let positions = || split.each(view.mesh.positions()).map(|p| p.as_vec3());
+        let min = positions().fold(Vec3::INFINITY, Vec3::min).to_array();
+        let max = positions().fold(Vec3::NEG_INFINITY, Vec3::max).to_array();
+        let bounds = Some((json::Value::from(&min[..]), json::Value::from(&max[..])));
+        attributes.insert(Semantic::Positions, doc.floats(positions().flat_map(|p| p.to_array()), 3, bounds));
     }
     if let Some(n) = view.normals {
-        let n: Vec<f32> = split.gather(n).iter().flat_map(|n| n.as_vec3().to_array()).collect();
-        attributes.insert(Semantic::Normals, doc.floats(&n, 3, None));
+        attributes.insert(Semantic::Normals, doc.floats(split.each(n).flat_map(|n| n.as_vec3().to_array()), 3, None));
     }
     if let Some(uvs) = &split.uvs {
-        let uv: Vec<f32> = uvs.iter().flat_map(|uv| [uv.x as f32, (1.0 - uv.y) as f32]).collect();
-        attributes.insert(Semantic::TexCoords(0), doc.floats(&uv, 2, None));
+        let uv = uvs.iter().flat_map(|uv| [uv.x as f32, (1.0 - uv.y) as f32]);
+        attributes.insert(Semantic::TexCoords(0), doc.floats(uv, 2, None));
     }
     if let Some(c) = view.colors {
-        attributes.insert(Semantic::Colors(0), doc.floats(split.gather(c).as_flattened(), 4, None));
+        attributes.insert(Semantic::Colors(0), doc.floats(split.each(c).flatten().copied(), 4, None));
     }
     for (name, values) in &view.scalars {
-        let v: Vec<f32> = split.gather(values).iter().map(|&x| x as f32).collect();
-        attributes.insert(Semantic::Extras((*name).to_owned()), doc.floats(&v, 1, None));
+        let v = split.each(values).map(|&x| x as f32);
+        attributes.insert(Semantic::Extras((*name).to_owned()), doc.floats(v, 1, None));
     }
-    let indices: Vec<u8> = split.faces.as_flattened().iter().flat_map(|i| i.to_le_bytes()).collect();
     let has_faces = !split.faces.is_empty();
     let indices = has_faces.then(|| {
-        let count = split.faces.len() * 3;
-        doc.accessor(
-            &indices,
-            count,
-            ComponentType::U32,
-            json::accessor::Type::Scalar,
-            json::buffer::Target::ElementArrayBuffer,
-            None,
-        )
+        let words = split.faces.as_flattened().iter().map(|i| i.to_le_bytes());
+        doc.accessor(words, 1, ComponentType::U32, json::buffer::Target::ElementArrayBuffer, None)
     });
     let mode = if has_faces { json::mesh::Mode::Triangles } else { json::mesh::Mode::Points };
     Ok(doc.finish(attributes, indices, mode, embed))
@@ -572,32 +595,30 @@ impl Doc {
     /// Adds `f32` data with `n` components per element.
     fn floats(
         &mut self,
-        values: &[f32],
+        values: impl Iterator<Item = f32>,
         n: usize,
         bounds: Option<(json::Value, json::Value)>,
     ) -> json::Index<json::Accessor> {
-        use json::accessor::Type;
-        let kind = [Type::Scalar, Type::Vec2, Type::Vec3, Type::Vec4][n - 1];
-        let bytes: Vec<u8> = values.iter().flat_map(|x| x.to_le_bytes()).collect();
-        self.accessor(&bytes, values.len() / n, ComponentType::F32, kind, json::buffer::Target::ArrayBuffer, bounds)
+        self.accessor(values.map(f32::to_le_bytes), n, ComponentType::F32, json::buffer::Target::ArrayBuffer, bounds)
     }
 
-    /// Adds a buffer view holding `bytes` and an accessor over it.
+    /// Adds a buffer view holding 4-byte words, `n` per element, and an accessor over it.
     fn accessor(
         &mut self,
-        bytes: &[u8],
-        count: usize,
+        words: impl Iterator<Item = [u8; 4]>,
+        n: usize,
         component: ComponentType,
-        kind: json::accessor::Type,
         target: json::buffer::Target,
         bounds: Option<(json::Value, json::Value)>,
     ) -> json::Index<json::Accessor> {
+        use json::accessor::Type;
         let offset = self.bin.len();
-        self.bin.extend_from_slice(bytes);
-        self.bin.resize(self.bin.len().next_multiple_of(4), 0);
+        words.for_each(|w| self.bin.extend_from_slice(&w));
+        let length = self.bin.len() - offset;
+        let (count, kind) = (length / 4 / n, [Type::Scalar, Type::Vec2, Type::Vec3, Type::Vec4][n - 1]);
         let view = self.root.push(json::buffer::View {
             buffer: json::Index::new(0),
-            byte_length: bytes.len().into(),
+            byte_length: length.into(),
             byte_offset: Some(offset.into()),
             byte_stride: None,
             target: Some(Checked::Valid(target)),

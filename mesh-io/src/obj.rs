@@ -106,18 +106,15 @@ impl Reader {
         self.polygon.iter_mut().for_each(Vec::clear);
         while let Some(v) = s.opt_int("a vertex index")? {
             self.polygon[0].push(resolve(|| s.at(), face, what[0], v, counts[0])?);
-            if !s.eat(b'/') {
-                continue;
-            }
+            // `v/vt/vn`, `v/vt` or `v//vn`.
             for k in 1..3 {
-                if k == 2 && !s.eat(b'/') {
+                if !s.eat(b'/') {
                     break;
                 }
-                if matches!(s.rest().first(), Some(b'/')) || s.at_line_end() {
-                    continue;
+                if s.rest().first().is_some_and(|b| b.is_ascii_digit() || *b == b'-' || *b == b'+') {
+                    let i = s.int("an index")?;
+                    self.polygon[k].push(resolve(|| s.at(), face, what[k], i, counts[k])?);
                 }
-                let i = s.int("an index")?;
-                self.polygon[k].push(resolve(|| s.at(), face, what[k], i, counts[k])?);
             }
         }
         let n = self.polygon[0].len();
@@ -270,6 +267,13 @@ mod tests {
         assert_eq!(d.normals.as_ref().unwrap()[3], DVec3::Z);
         let d = read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n").unwrap();
         assert!(d.normals.is_some() && d.uvs.is_none());
+    }
+
+    #[test]
+    fn slashes_without_indices() {
+        let d = read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/ 2/ 3/\n").unwrap();
+        assert!(d.uvs.is_none() && d.mesh.face_count() == 1);
+        assert!(read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1x 2 3\n").is_err());
     }
 
     #[test]

@@ -501,21 +501,11 @@ impl Source for Binary<'_> {
         let mut polygon = Vec::new();
         for f in 0..e.count {
             let n = self.count(c)?;
-            let bytes = self.take(n.saturating_mul(4))?;
-            if n == 3 {
-                let mut tri = [0u32; 3];
-                for (v, b) in tri.iter_mut().zip(bytes.chunks_exact(4)) {
-                    let i = t.decode_int(b, big).unwrap_or(-1);
-                    *v = vertex_index(loc, f, i, nv)?;
-                }
-                faces.push(&tri, &[], report);
-            } else {
-                polygon.clear();
-                for b in bytes.chunks_exact(4) {
-                    polygon.push(vertex_index(loc, f, t.decode_int(b, big).unwrap_or(-1), nv)?);
-                }
-                faces.push(&polygon, &[], report);
+            polygon.clear();
+            for b in self.take(n.saturating_mul(4))?.chunks_exact(4) {
+                polygon.push(vertex_index(loc, f, t.decode_int(b, big).unwrap_or(-1), nv)?);
             }
+            faces.push(&polygon, &[], report);
         }
         Ok(true)
     }
