@@ -35,6 +35,8 @@ enum Command {
     Report(commands::report::Args),
     /// Gaussian, mean and principal curvatures and directions, to a PLY file.
     Curvature(commands::curvature::Args),
+    /// Flattens a mesh onto the plane (Tutte, mean-value, harmonic, authalic, intrinsic, LSCM, ARAP), to an OBJ with UVs.
+    Param(commands::param::Args),
 }
 
 fn main() {
@@ -47,6 +49,7 @@ fn main() {
         Command::Render(args) => commands::render::run(args),
         Command::Report(args) => commands::report::run(args),
         Command::Curvature(args) => commands::curvature::run(args),
+        Command::Param(args) => commands::param::run(args),
     };
     if let Err(e) = result {
         eprintln!("mesh: error: {e}");

@@ -8,9 +8,9 @@
 //! (eq. 2.15 weights) with one vertex pinned, factored once.
 
 use glam::{DMat2, DVec2};
-use mesh_core::solver::{DirichletSolver, Factorization};
 use mesh_core::{TriMesh, VertexId, VertexKind};
 
+use crate::dirichlet::Dirichlet;
 use crate::error::{ParamError, Result};
 use crate::fixed::{weight_matrix, DegeneratePolicy};
 use crate::topology::require_disk;
@@ -20,12 +20,12 @@ use crate::weights::{Harmonic, LocalTriangle, WeightContext};
 /// isometric flattening, ready for any number of iterations from any start.
 #[derive(Debug, Clone)]
 pub struct Arap {
-    solver: DirichletSolver,
+    solver: Dirichlet,
     /// Per face: flattened corners (x_0 = 0) and the opposite cotangents of
     /// the half-edges 0 -> 1, 1 -> 2, 2 -> 0.
     flat: Vec<([DVec2; 3], [f64; 3])>,
     faces: Vec<[u32; 3]>,
-    pinned: Vec<usize>,
+    vertex_count: usize,
 }
 
 impl Arap {
@@ -52,11 +52,10 @@ impl Arap {
             .chain((0..n).filter(|&v| conn.vertex_kind(VertexId::new(v)) == VertexKind::Isolated))
             .collect();
         let l = weight_matrix(&ctx, &Harmonic);
-        let solver = match DirichletSolver::new(&l, &pinned, Factorization::Cholesky) {
-            Ok(s) => s,
-            Err(_) => DirichletSolver::new(&l, &pinned, Factorization::Lu)?,
-        };
-        Ok(Self { solver, flat, faces: mesh.faces().to_vec(), pinned })
+        let mut is_fixed = vec![false; n];
+        pinned.iter().for_each(|&v| is_fixed[v] = true);
+        let solver = Dirichlet::new(&l, &is_fixed, true)?;
+        Ok(Self { solver, flat, faces: mesh.faces().to_vec(), vertex_count: n })
     }
 
     /// The ARAP energy sum_t sum_(i,j) cot_ij |(u_i - u_j) - R_t (x_i - x_j)|^2
@@ -74,8 +73,15 @@ impl Arap {
     /// than return non-finite coordinates.
     pub fn solve(&self, start: &[DVec2], iterations: usize) -> Result<Vec<DVec2>> {
         let n = start.len();
-        if self.pinned.iter().any(|&v| v >= n) {
-            return Err(mesh_core::MeshError::Dimension(format!("{n} start positions")).into());
+        if n != self.vertex_count {
+            return Err(mesh_core::MeshError::Dimension(format!(
+                "{n} start positions for {} vertices",
+                self.vertex_count
+            ))
+            .into());
+        }
+        if let Some(vertex) = start.iter().position(|q| !q.is_finite()) {
+            return Err(ParamError::NonFinite { vertex });
         }
         let mut uv = start.to_vec();
         let fixed_u: Vec<f64> = self.solver.fixed().iter().map(|&v| uv[v].x).collect();
@@ -94,12 +100,8 @@ impl Arap {
                     bv[j] -= d.y;
                 }
             }
-            let u = self.solver.solve(&fixed_u, Some(&bu))?;
-            let v = self.solver.solve(&fixed_v, Some(&bv))?;
-            uv = u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)).collect();
-            if let Some(vertex) = uv.iter().position(|q| !q.is_finite()) {
-                return Err(ParamError::NonFinite { vertex });
-            }
+            let x = self.solver.solve(&[&fixed_u, &fixed_v], Some(&[&bu, &bv]))?;
+            uv = x[0].iter().zip(&x[1]).map(|(u, v)| DVec2::new(*u, *v)).collect();
         }
         Ok(uv)
     }

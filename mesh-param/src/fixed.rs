@@ -4,12 +4,13 @@
 
 use glam::DVec2;
 use mesh_core::operators::EdgePattern;
-use mesh_core::solver::{DirichletSolver, Factorization};
+use mesh_core::solver::Factorization;
 use mesh_core::sprs::CsMat;
-use mesh_core::{EdgeId, FaceId, MeshError, TriMesh, VertexId, VertexKind};
+use mesh_core::{FaceId, HalfedgeId, MeshError, TriMesh, VertexId, VertexKind};
 
+use crate::dirichlet::Dirichlet;
 use crate::error::{ParamError, Result};
-use crate::weights::{DirectedEdge, WeightContext, Weights};
+use crate::weights::{EdgeInfo, WeightContext, Weights};
 
 /// What to do with zero-area faces, whose cotangents and half-angle tangents
 /// are infinite.
@@ -26,18 +27,30 @@ pub enum DegeneratePolicy {
 }
 
 /// The matrix L of eq. 2.13 for `weights`: `(L q)_i = sum_j w_ij (q_i - q_j)`,
-/// assembled on the edge pattern in O(V + E) (one weight per directed edge).
+/// assembled on the edge pattern in O(V + F): each face is measured once and
+/// adds its terms to the weights of its three edges in both directions.
 pub fn weight_matrix<W: Weights + ?Sized>(ctx: &WeightContext<'_>, weights: &W) -> CsMat<f64> {
     let conn = ctx.connectivity();
     let edges = conn.edges();
-    let mut lo_hi = Vec::with_capacity(edges.len());
-    let mut hi_lo = Vec::with_capacity(edges.len());
-    for (e, &[lo, hi]) in edges.iter().enumerate() {
-        let hs = conn.edge_halfedges(EdgeId::new(e));
-        let from = |v: VertexId| hs.iter().copied().find(|&h| conn.origin(h) == v);
-        let (h_lo, h_hi) = (from(lo), from(hi));
-        lo_hi.push(weights.weight(ctx, DirectedEdge { from: lo, to: hi, left: h_lo, right: h_hi }));
-        hi_lo.push(weights.weight(ctx, DirectedEdge { from: hi, to: lo, left: h_hi, right: h_lo }));
+    let mut lo_hi = vec![0.0; edges.len()];
+    let mut hi_lo = vec![0.0; edges.len()];
+    let mean_edge_length = ctx.mean_edge_length();
+    for f in ctx.mesh().face_ids() {
+        let mut t = ctx.face_triangle(f);
+        for k in 0..3 {
+            let h = HalfedgeId::of_corner(f, k);
+            let e = conn.edge(h);
+            let info = EdgeInfo { faces: conn.edge_halfedges(e).len(), mean_edge_length };
+            let [ij, ji] = weights.face_terms(&t, &info);
+            if conn.origin(h) == edges[e.idx()][0] {
+                lo_hi[e.idx()] += ij;
+                hi_lo[e.idx()] += ji;
+            } else {
+                lo_hi[e.idx()] += ji;
+                hi_lo[e.idx()] += ij;
+            }
+            t = t.rotated();
+        }
     }
     EdgePattern::new(ctx.mesh().vertex_count(), edges).directed(&lo_hi, &hi_lo)
 }
@@ -47,19 +60,19 @@ pub fn weight_matrix<W: Weights + ?Sized>(ctx: &WeightContext<'_>, weights: &W) 
 /// positions of those vertices (e.g. circle and square boundaries) at the cost
 /// of two triangular solves each.
 ///
-/// Symmetric weights are factored by Cholesky (falling back to LU if the
-/// matrix is not positive definite), asymmetric ones by LU. Unreferenced
+/// Symmetric weights are factored by sparse Cholesky (falling back to LU if
+/// the matrix is not positive definite), asymmetric ones by sparse LU, both
+/// from `mesh_core::solver` (on the free block cut out in O(nnz)). Unreferenced
 /// vertices are fixed at the centroid of the constraints. Cost: assembly
 /// O(V + E) plus one sparse factorization of the free block.
 #[derive(Debug, Clone)]
 pub struct FixedBoundarySolver {
-    solver: DirichletSolver,
+    solver: Dirichlet,
     /// For each slot of `solver.fixed()`: index into the caller's constraints,
     /// or `None` for an unreferenced vertex.
     slot_source: Vec<Option<usize>>,
     constrained: usize,
     degenerate: Vec<FaceId>,
-    factorization: Factorization,
 }
 
 impl FixedBoundarySolver {
@@ -93,18 +106,13 @@ impl FixedBoundarySolver {
         if let (DegeneratePolicy::Error, Some(&first)) = (policy, ctx.degenerate_faces().first()) {
             return Err(ParamError::DegenerateFaces { count: ctx.degenerate_faces().len(), first });
         }
-        let isolated = (0..n).filter(|&v| conn.vertex_kind(VertexId::new(v)) == VertexKind::Isolated);
-        let fixed: Vec<usize> = constrained.iter().map(|v| v.idx()).chain(isolated).collect();
+        let is_fixed: Vec<bool> = (0..n)
+            .map(|v| slot_of[v].is_some() || conn.vertex_kind(VertexId::new(v)) == VertexKind::Isolated)
+            .collect();
         let a = weight_matrix(&ctx, weights);
-        let (solver, factorization) = factor(&a, &fixed, weights.is_symmetric())?;
+        let solver = Dirichlet::new(&a, &is_fixed, weights.is_symmetric())?;
         let slot_source = solver.fixed().iter().map(|&v| slot_of[v]).collect();
-        Ok(Self {
-            solver,
-            slot_source,
-            constrained: constrained.len(),
-            degenerate: ctx.degenerate_faces().to_vec(),
-            factorization,
-        })
+        Ok(Self { solver, slot_source, constrained: constrained.len(), degenerate: ctx.degenerate_faces().to_vec() })
     }
 
     /// Faces that were weighted uniformly because they have zero area.
@@ -114,13 +122,14 @@ impl FixedBoundarySolver {
 
     /// The factorization used (Cholesky for symmetric weights, else LU).
     pub fn factorization(&self) -> Factorization {
-        self.factorization
+        self.solver.factorization()
     }
 
     /// Solves for all vertices given the positions of the constrained ones
-    /// (in the order given to [`FixedBoundarySolver::new`]): u and v reuse
-    /// the one factorization. Fails rather than return a non-finite
-    /// coordinate. Cost: two sparse triangular solve pairs, O(nnz of factor).
+    /// (in the order given to [`FixedBoundarySolver::new`]): u and v are two
+    /// right-hand sides of the one factorization. Fails rather than return a
+    /// non-finite coordinate. Cost: one pair of sparse triangular solves
+    /// with two columns, O(nnz of the factor).
     pub fn solve(&self, positions: &[DVec2]) -> Result<Vec<DVec2>> {
         if positions.len() != self.constrained {
             return Err(MeshError::Dimension(format!(
@@ -137,24 +146,13 @@ impl FixedBoundarySolver {
         let value = |s: &Option<usize>| s.map_or(centroid, |k| positions[k]);
         let fu: Vec<f64> = self.slot_source.iter().map(|s| value(s).x).collect();
         let fv: Vec<f64> = self.slot_source.iter().map(|s| value(s).y).collect();
-        let u = self.solver.solve(&fu, None)?;
-        let v = self.solver.solve(&fv, None)?;
-        let uv: Vec<DVec2> = u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)).collect();
-        match uv.iter().position(|q| !q.is_finite()) {
-            Some(vertex) => Err(ParamError::NonFinite { vertex }),
-            None => Ok(uv),
-        }
+        let [u, v]: [Vec<f64>; 2] = self
+            .solver
+            .solve(&[&fu, &fv], None)?
+            .try_into()
+            .map_err(|_| MeshError::Solver("expected two solutions".into()))?;
+        Ok(u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)).collect())
     }
-}
-
-/// Factors the free block: Cholesky when symmetric (LU if that fails), else LU.
-fn factor(a: &CsMat<f64>, fixed: &[usize], symmetric: bool) -> Result<(DirichletSolver, Factorization)> {
-    if symmetric {
-        if let Ok(s) = DirichletSolver::new(a, fixed, Factorization::Cholesky) {
-            return Ok((s, Factorization::Cholesky));
-        }
-    }
-    Ok((DirichletSolver::new(a, fixed, Factorization::Lu)?, Factorization::Lu))
 }
 
 #[cfg(test)]

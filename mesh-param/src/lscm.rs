@@ -5,10 +5,10 @@
 //! exactly for conformal maps (eq. 2.10-2.11 with equality).
 
 use glam::DVec2;
-use mesh_core::solver::{DirichletSolver, Factorization};
-use mesh_core::sprs::{CsMat, TriMat};
+use mesh_core::sprs::CsMat;
 use mesh_core::{FaceId, TriMesh, VertexId, VertexKind};
 
+use crate::dirichlet::Dirichlet;
 use crate::error::{ParamError, Result};
 use crate::fixed::{weight_matrix, DegeneratePolicy};
 use crate::topology::require_disk;
@@ -51,28 +51,59 @@ pub fn conformal_energy_matrix(ctx: &WeightContext<'_>) -> Result<CsMat<f64>> {
     let conn = ctx.connectivity();
     // weight_matrix uses cot alpha + cot beta: half of it is the stiffness.
     let l = weight_matrix(ctx, &Harmonic);
-    let mut q = TriMat::with_capacity((2 * n, 2 * n), 2 * l.nnz() + 8 * n);
+    // Boundary neighbours (previous, next) of each boundary vertex.
+    let mut around: Vec<Option<(usize, usize)>> = vec![None; n];
+    for lp in conn.boundary_loops()? {
+        let m = lp.vertices.len();
+        for k in 0..m {
+            around[lp.vertices[k].idx()] = Some((lp.vertices[(k + m - 1) % m].idx(), lp.vertices[(k + 1) % m].idx()));
+        }
+    }
+    // For boundary edge i -> j: Q(u_i, v_j) = Q(v_j, u_i) = -1/2 and
+    // Q(u_j, v_i) = Q(v_i, u_j) = +1/2. So row u_i holds +1/2 at v_prev and
+    // -1/2 at v_next; row v_i holds -1/2 at u_prev and +1/2 at u_next.
+    let extra = |i: usize, sign: f64| -> Vec<(usize, f64)> {
+        let Some((prev, next)) = around[i] else { return Vec::new() };
+        let mut e = vec![(prev, 0.5 * sign), (next, -0.5 * sign)];
+        e.sort_unstable_by_key(|x| x.0);
+        if e[0].0 == e[1].0 {
+            e = vec![(e[0].0, e[0].1 + e[1].1)];
+        }
+        e
+    };
+    let mut indptr = Vec::with_capacity(2 * n + 1);
+    let mut indices = Vec::with_capacity(2 * l.nnz() + 4 * n);
+    let mut data = Vec::with_capacity(2 * l.nnz() + 4 * n);
+    indptr.push(0);
     for (i, row) in l.outer_iterator().enumerate() {
         for (j, &w) in row.iter() {
-            q.add_triplet(i, j, 0.5 * w);
-            q.add_triplet(n + i, n + j, 0.5 * w);
+            indices.push(j);
+            data.push(0.5 * w);
         }
-    }
-    for lp in conn.boundary_loops()? {
-        for &h in &lp.halfedges {
-            let (i, j) = (conn.origin(h).idx(), conn.dest(h).idx());
-            q.add_triplet(i, n + j, -0.5);
-            q.add_triplet(n + j, i, -0.5);
-            q.add_triplet(j, n + i, 0.5);
-            q.add_triplet(n + i, j, 0.5);
+        for (j, w) in extra(i, 1.0) {
+            indices.push(n + j);
+            data.push(w);
         }
+        indptr.push(indices.len());
     }
-    Ok(q.to_csc())
+    for (i, row) in l.outer_iterator().enumerate() {
+        for (j, w) in extra(i, -1.0) {
+            indices.push(j);
+            data.push(w);
+        }
+        for (j, &w) in row.iter() {
+            indices.push(n + j);
+            data.push(0.5 * w);
+        }
+        indptr.push(indices.len());
+    }
+    Ok(CsMat::new((2 * n, 2 * n), indptr, indices, data))
 }
 
 /// Least-squares conformal map of a disk (Levy et al. 2002) with two pinned
 /// vertices, solved as one sparse 2n x 2n Cholesky (LU if that fails) of the
-/// free block of [`conformal_energy_matrix`]. A planar mesh is reproduced up
+/// free block of [`conformal_energy_matrix`] (the pins and unreferenced
+/// vertices are fixed). A planar mesh is reproduced up
 /// to a similarity. Cost: O(V + F) assembly plus one sparse factorization.
 pub fn lscm(mesh: &TriMesh, options: &LscmOptions) -> Result<LscmMap> {
     let boundary = require_disk(mesh)?;
@@ -101,17 +132,11 @@ pub fn lscm(mesh: &TriMesh, options: &LscmOptions) -> Result<LscmMap> {
             fixed_value[n + v] = Some(pins[0].1.y);
         }
     }
-    let fixed: Vec<usize> = (0..2 * n).filter(|&k| fixed_value[k].is_some()).collect();
-    let solver = match DirichletSolver::new(&q, &fixed, Factorization::Cholesky) {
-        Ok(s) => s,
-        Err(_) => DirichletSolver::new(&q, &fixed, Factorization::Lu)?,
-    };
+    let is_fixed: Vec<bool> = fixed_value.iter().map(Option::is_some).collect();
+    let solver = Dirichlet::new(&q, &is_fixed, true)?;
     let values: Vec<f64> = solver.fixed().iter().map(|&k| fixed_value[k].unwrap_or(0.0)).collect();
-    let x = solver.solve(&values, None)?;
+    let x = solver.solve(&[&values], None)?.pop().unwrap_or_default();
     let mut uv: Vec<DVec2> = (0..n).map(|v| DVec2::new(x[v], x[n + v])).collect();
-    if let Some(vertex) = uv.iter().position(|q| !q.is_finite()) {
-        return Err(ParamError::NonFinite { vertex });
-    }
     if options.normalize {
         normalize_to_unit_box(&mut uv);
     }

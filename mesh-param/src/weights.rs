@@ -14,41 +14,40 @@
 //! angles at p_i of the two faces of the edge; gamma_ij, delta_ij are the
 //! angles at p_j of the two faces of the edge.
 //!
-//! Every weight is a sum of one term per face of the edge, computed from that
-//! face's [`LocalTriangle`]. Zero-area faces would give infinite cotangents
-//! and tangents: [`WeightContext`] replaces each of them by an equilateral
+//! Every weight is a sum of one term per face of the edge: a [`Weights`]
+//! implementation computes, for a half-edge i -> j, the terms its face adds
+//! to w_ij and to w_ji from that face's [`LocalTriangle`] alone, so each face
+//! is measured once. Zero-area faces would give infinite cotangents and
+//! tangents: [`WeightContext`] replaces each of them by an equilateral
 //! triangle of the same mean edge length (uniform weights on that face), see
 //! [`crate::DegeneratePolicy`].
 
 use glam::DVec3;
-use mesh_core::{Connectivity, FaceId, HalfedgeId, TriMesh, VertexId};
+use mesh_core::{Connectivity, FaceId, HalfedgeId, TriMesh};
 
 /// Relative area below which a face counts as degenerate: twice its area is
 /// at most this times its longest edge squared (as in
 /// `mesh_core::clean::is_degenerate_triangle`).
 pub const DEGENERATE_TOLERANCE: f64 = 1e-12;
 
-/// A directed edge i -> j with the faces on both sides: `left` is the
-/// half-edge i -> j (its face is on the left), `right` the half-edge j -> i.
-/// On the boundary one of them is `None`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct DirectedEdge {
-    /// The vertex i whose equation the weight belongs to.
-    pub from: VertexId,
-    /// The neighbour j.
-    pub to: VertexId,
-    /// Half-edge i -> j, if any.
-    pub left: Option<HalfedgeId>,
-    /// Half-edge j -> i, if any.
-    pub right: Option<HalfedgeId>,
+/// What a weight term may know about its edge besides the face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeInfo {
+    /// Number of faces on the edge (1 on the boundary, 2 inside).
+    pub faces: usize,
+    /// Mean edge length of the mesh (a length scale).
+    pub mean_edge_length: f64,
 }
 
-/// The weights of one parameterization method: w_ij for each directed edge
-/// i -> j of eq. 2.13. Weights may be scaled by any positive factor per
-/// equation i without changing the solution.
+/// The weights of one parameterization method: w_ij of eq. 2.13 for each
+/// directed edge i -> j, as a sum of one term per face of the edge. Weights
+/// may be scaled by any positive factor per equation i without changing the
+/// solution.
 pub trait Weights {
-    /// The weight w_ij of `edge` (i = `edge.from`, j = `edge.to`). Cost O(1).
-    fn weight(&self, ctx: &WeightContext<'_>, edge: DirectedEdge) -> f64;
+    /// For the half-edge i -> j whose face is `t` (i at corner 0, j at
+    /// corner 1, the opposite vertex at corner 2): the terms this face adds
+    /// to w_ij and to w_ji. Cost O(1).
+    fn face_terms(&self, t: &LocalTriangle, edge: &EdgeInfo) -> [f64; 2];
 
     /// `true` when w_ij = w_ji for every edge, so that the fixed-boundary
     /// system is symmetric and a Cholesky factorization applies.
@@ -77,6 +76,14 @@ impl LocalTriangle {
             dot: [-eki.dot(eij), -eij.dot(ejk), -ejk.dot(eki)],
             double_area: eij.cross(-eki).length(),
         }
+    }
+
+    /// The same triangle seen from its next half-edge (j -> k, opposite i).
+    #[inline]
+    pub fn rotated(&self) -> Self {
+        let [l0, l1, l2] = self.len;
+        let [d0, d1, d2] = self.dot;
+        Self { len: [l1, l2, l0], dot: [d1, d2, d0], double_area: self.double_area }
     }
 
     /// The equilateral triangle of side `s`: the stand-in for a zero-area face.
@@ -173,19 +180,11 @@ impl<'a> WeightContext<'a> {
         LocalTriangle::equilateral(side)
     }
 
-    /// Sum of `term` over the faces of a directed edge, each seen from its
-    /// half-edge, with a flag telling whether that half-edge runs i -> j
-    /// (`true`, the left face) or j -> i (`false`, the right face).
+    /// The face `f` seen from its first half-edge (corner 0 -> corner 1),
+    /// or its equilateral stand-in.
     #[inline]
-    pub fn sum_faces(&self, edge: DirectedEdge, term: impl Fn(&LocalTriangle, bool) -> f64) -> f64 {
-        let mut w = 0.0;
-        if let Some(h) = edge.left {
-            w += term(&self.triangle(h), true);
-        }
-        if let Some(h) = edge.right {
-            w += term(&self.triangle(h), false);
-        }
-        w
+    pub fn face_triangle(&self, f: FaceId) -> LocalTriangle {
+        self.triangle(HalfedgeId::of_corner(f, 0))
     }
 }
 
@@ -196,8 +195,9 @@ impl<'a> WeightContext<'a> {
 pub struct Uniform;
 
 impl Weights for Uniform {
-    fn weight(&self, _: &WeightContext<'_>, _: DirectedEdge) -> f64 {
-        1.0
+    fn face_terms(&self, _: &LocalTriangle, edge: &EdgeInfo) -> [f64; 2] {
+        // w_ij = 1 per edge, shared among its faces.
+        [1.0 / edge.faces as f64; 2]
     }
     fn is_symmetric(&self) -> bool {
         true
@@ -212,9 +212,10 @@ impl Weights for Uniform {
 pub struct MeanValue;
 
 impl Weights for MeanValue {
-    fn weight(&self, ctx: &WeightContext<'_>, edge: DirectedEdge) -> f64 {
-        // In the left face (i -> j) p_i is corner 0; in the right face (j -> i), corner 1.
-        ctx.sum_faces(edge, |t, left| t.tan_half(if left { 0 } else { 1 }) / t.edge_length())
+    fn face_terms(&self, t: &LocalTriangle, _: &EdgeInfo) -> [f64; 2] {
+        // w_ij takes the angle at p_i (corner 0), w_ji the angle at p_j (corner 1).
+        let l = t.edge_length();
+        [t.tan_half(0) / l, t.tan_half(1) / l]
     }
     fn is_symmetric(&self) -> bool {
         false
@@ -229,8 +230,8 @@ impl Weights for MeanValue {
 pub struct Harmonic;
 
 impl Weights for Harmonic {
-    fn weight(&self, ctx: &WeightContext<'_>, edge: DirectedEdge) -> f64 {
-        ctx.sum_faces(edge, |t, _| t.cot(2))
+    fn face_terms(&self, t: &LocalTriangle, _: &EdgeInfo) -> [f64; 2] {
+        [t.cot(2); 2]
     }
     fn is_symmetric(&self) -> bool {
         true
@@ -245,12 +246,10 @@ impl Weights for Harmonic {
 pub struct Authalic;
 
 impl Weights for Authalic {
-    fn weight(&self, ctx: &WeightContext<'_>, edge: DirectedEdge) -> f64 {
-        // p_j is corner 1 of the left face (i -> j) and corner 0 of the right one.
-        ctx.sum_faces(edge, |t, left| {
-            let l = t.edge_length();
-            t.cot(if left { 1 } else { 0 }) / (l * l)
-        })
+    fn face_terms(&self, t: &LocalTriangle, _: &EdgeInfo) -> [f64; 2] {
+        // w_ij takes the angle at p_j (corner 1), w_ji the angle at p_i (corner 0).
+        let l2 = t.edge_length() * t.edge_length();
+        [t.cot(1) / l2, t.cot(0) / l2]
     }
     fn is_symmetric(&self) -> bool {
         false
@@ -277,14 +276,15 @@ impl Default for Intrinsic {
 }
 
 impl Weights for Intrinsic {
-    fn weight(&self, ctx: &WeightContext<'_>, edge: DirectedEdge) -> f64 {
-        let mut w = 0.0;
+    fn face_terms(&self, t: &LocalTriangle, edge: &EdgeInfo) -> [f64; 2] {
+        let mut w = [0.0; 2];
         if self.lambda != 0.0 {
-            w += self.lambda * Harmonic.weight(ctx, edge);
+            w = Harmonic.face_terms(t, edge).map(|x| self.lambda * x);
         }
         if self.mu != 0.0 {
-            let l = ctx.mean_edge_length();
-            w += self.mu * l * l * Authalic.weight(ctx, edge);
+            let scale = self.mu * edge.mean_edge_length * edge.mean_edge_length;
+            let a = Authalic.face_terms(t, edge);
+            w = [w[0] + scale * a[0], w[1] + scale * a[1]];
         }
         w
     }
@@ -308,6 +308,8 @@ mod tests {
             assert!((t.tan_half(c) - (angles[c] / 2.0).tan()).abs() < 1e-14);
         }
         assert!((t.edge_length() - 2.0).abs() < 1e-15);
+        let r = t.rotated();
+        assert!((r.cot(2) - t.cot(0)).abs() < 1e-15 && (r.edge_length() - t.len[1]).abs() < 1e-15);
         let e = LocalTriangle::equilateral(3.0);
         for c in 0..3 {
             assert!((e.cot(c) - 1.0 / (PI / 3.0).tan()).abs() < 1e-15);

@@ -5,5 +5,6 @@ pub mod convert;
 pub mod curvature;
 pub mod generate;
 pub mod info;
+pub mod param;
 pub mod render;
 pub mod report;

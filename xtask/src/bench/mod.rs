@@ -11,6 +11,7 @@
 
 mod core;
 mod curvature;
+mod param;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -38,7 +39,7 @@ impl<'a> Operation<'a> {
 /// Every group of operations: a function from the mesh file and its content
 /// to the operations.
 type Group = for<'a> fn(&'a std::path::Path, &'a MeshData) -> Vec<Operation<'a>>;
-const GROUPS: &[Group] = &[core::operations, curvature::operations];
+const GROUPS: &[Group] = &[core::operations, curvature::operations, param::operations];
 
 /// Arguments of `cargo xtask bench`.
 #[derive(Debug, clap::Args)]
