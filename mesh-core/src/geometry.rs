@@ -9,6 +9,7 @@ use glam::DVec3;
 
 use crate::ids::{EdgeId, FaceId};
 use crate::mesh::TriMesh;
+use crate::par::map_indexed;
 
 /// Twice the signed area vector of a triangle: (b - a) x (c - a).
 #[inline]
@@ -44,17 +45,17 @@ pub fn triangle_angles([a, b, c]: [DVec3; 3]) -> [f64; 3] {
 
 /// Area of every face.
 pub fn face_areas(mesh: &TriMesh) -> Vec<f64> {
-    mesh.face_ids().map(|f| triangle_area(mesh.triangle(f))).collect()
+    map_indexed(mesh.face_count(), |f| triangle_area(mesh.triangle(FaceId::new(f))))
 }
 
 /// Unit normal of every face (zero for zero-area faces).
 pub fn face_normals(mesh: &TriMesh) -> Vec<DVec3> {
-    mesh.face_ids().map(|f| triangle_normal(mesh.triangle(f))).collect()
+    map_indexed(mesh.face_count(), |f| triangle_normal(mesh.triangle(FaceId::new(f))))
 }
 
 /// Interior angle at each corner of every face, `[f][k]` at corner `k`.
 pub fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    mesh.face_ids().map(|f| triangle_angles(mesh.triangle(f))).collect()
+    map_indexed(mesh.face_count(), |f| triangle_angles(mesh.triangle(FaceId::new(f))))
 }
 
 /// How incident face normals are averaged into a vertex normal.

@@ -10,7 +10,7 @@
 //! | [`clean`] | welding, degenerate / duplicate / unreferenced removal, orientation, with a report | |
 //! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |
 //! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
-//! | [`solver`] | sparse Cholesky / LU on faer, Dirichlet-constrained solves | |
+//! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //!
 //! ```
@@ -31,6 +31,10 @@
 //! # Ok::<(), mesh_core::MeshError>(())
 //! ```
 //!
+//! Features: `solver` (default) builds the faer solvers; `rayon` (default)
+//! runs per-face loops of large meshes in parallel. Crates that need only the
+//! data model turn both off.
+//!
 //! Conventions: geometry is `f64`, points are `glam::DVec3`, triangles are
 //! counter-clockwise seen from outside, Laplacians are positive
 //! semi-definite, sparse matrices are `sprs::CsMat<f64>` in CSR. Nothing a
@@ -44,7 +48,9 @@ pub mod geometry;
 pub mod ids;
 pub mod mesh;
 pub mod operators;
+mod par;
 pub mod shapes;
+#[cfg(feature = "solver")]
 pub mod solver;
 
 pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
@@ -52,6 +58,7 @@ pub use error::{MeshError, NonManifoldReport, Result};
 pub use ids::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::TriMesh;
 
+#[cfg(feature = "solver")]
 pub use faer;
 pub use glam;
 pub use sprs;
