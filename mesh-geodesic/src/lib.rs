@@ -8,8 +8,10 @@ pub mod error;
 pub mod fmm;
 pub mod heat;
 mod support;
+pub mod trace;
 
 pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
 pub use error::{GeodesicError, Result};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
 pub use heat::{heat_distance, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
+pub use trace::{trace_path, GeodesicPath, SurfacePoint, TraceOptions};
