@@ -1,0 +1,512 @@
+//! Block Krylov-Schur with full reorthogonalization (Stewart 2001, "A
+//! Krylov-Schur algorithm for large eigenproblems", in its symmetric form:
+//! thick-restart block Lanczos, Wu and Simon 2000; Zhou and Saad 2008).
+//!
+//! For a symmetric operator `B` (here the shift-invert operator) the method
+//! keeps an orthonormal basis `V` (n x s), a symmetric projected matrix `H`
+//! and an orthonormal residual block `Q` (n x b) with
+//!
+//! ```text
+//! B V = V H + Q G          (G: b x s)
+//! ```
+//!
+//! - **expand**: append `Q` to `V`, compute `W = B Q` (one multi-right-hand
+//!   side solve), orthogonalize `W` against the whole basis by block
+//!   classical Gram-Schmidt applied twice (matrix-matrix products), then
+//!   orthonormalize it inside the block (`W = Q' R`); `H` gains the block
+//!   `Q^T B Q`, `G` becomes `[0 .. 0 R]`;
+//! - **Rayleigh-Ritz**: `H = S Theta S^T` (dense self-adjoint eigen); the
+//!   Ritz pair `(theta_j, V s_j)` has residual norm exactly `||G s_j||`;
+//! - **restart**: keep the `p` largest Ritz pairs: `V <- V S_p`,
+//!   `H <- Theta_p`, `G <- G S_p`, and expand again from `Q`.
+//!
+//! A block of `b` vectors sees up to `b` copies of a repeated eigenvalue, so
+//! the block size is chosen above the multiplicities to expect; columns that
+//! become dependent (invariant subspace found) are replaced by fresh random
+//! directions, so the iteration never stalls. Every loop is bounded.
+
+use std::time::Instant;
+
+use faer::linalg::matmul::matmul;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
+
+use super::random::SplitMix64;
+use super::tall;
+use crate::error::{Result, SpectralError};
+
+/// A symmetric operator applied to blocks of vectors.
+pub(crate) trait BlockOperator {
+    /// Dimension n.
+    fn dim(&self) -> usize;
+    /// `w = B q` (both n x b).
+    fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()>;
+}
+
+/// Sizes and stopping rule of one run.
+#[derive(Debug, Clone)]
+pub(crate) struct Config {
+    /// Pairs that must converge (the largest `theta`).
+    pub want: usize,
+    /// Pairs kept at each restart at least (`want` plus guard vectors).
+    pub nev: usize,
+    /// Block size b.
+    pub block: usize,
+    /// Largest basis size m (`nev + 2 b <= m`, `m + b <= n`).
+    pub basis: usize,
+    /// Relative tolerance on the Ritz residual estimate `||G s|| <= tol theta`.
+    pub tol: f64,
+    /// Bound on restarts.
+    pub max_restarts: usize,
+    /// Seed of the random start block.
+    pub seed: u64,
+}
+
+/// What the caller's acceptance test returns for the candidate pairs.
+pub(crate) struct Verdict {
+    /// Per pair, explicit residual divided by its target (<= 1 passes).
+    pub ratios: Vec<f64>,
+    /// The caller's eigenvectors built from the candidates.
+    pub vectors: Mat<f64>,
+}
+
+/// Where the time of a run went.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Timings {
+    /// Operator applications (linear solves).
+    pub apply: f64,
+    /// Orthogonalization.
+    pub orthogonalize: f64,
+    /// Rayleigh-Ritz, restarts and acceptance tests.
+    pub other: f64,
+}
+
+/// Result of a converged run.
+pub(crate) struct Outcome {
+    /// The vectors of the accepted [`Verdict`].
+    pub vectors: Mat<f64>,
+    /// Restarts performed.
+    pub restarts: usize,
+    /// Operator applications, counted in columns.
+    pub columns: usize,
+    /// Time split.
+    pub timings: Timings,
+}
+
+/// Runs block Krylov-Schur on `op` until the `want` largest pairs pass the
+/// estimate and then `accept`, which gets the Ritz values, Ritz vectors `y`
+/// and purified vectors `u = B y / theta` (computed by one more application
+/// of `B`, so that the rounding drift of the Krylov relation over many
+/// restarts does not limit their accuracy).
+pub(crate) fn solve<O: BlockOperator>(
+    op: &O,
+    cfg: &Config,
+    mut accept: impl FnMut(&[f64], MatRef<'_, f64>, MatRef<'_, f64>) -> Result<Verdict>,
+) -> Result<Outcome> {
+    let n = op.dim();
+    let (b, m, want) = (cfg.block, cfg.basis, cfg.want);
+    if b == 0 || want == 0 || want > cfg.nev || cfg.nev + 2 * b > m || m + b > n {
+        return Err(SpectralError::InvalidOption {
+            name: "block_size",
+            reason: format!(
+                "inconsistent Krylov sizes: n = {n}, want = {want}, nev = {}, block = {b}, basis = {m}",
+                cfg.nev
+            ),
+        });
+    }
+    let mut rng = SplitMix64::new(cfg.seed);
+    let mut ks = KrylovSchur::new(n, m, b);
+    ks.start(&mut rng);
+    let mut est_tol = 0.25 * cfg.tol;
+    let mut columns = 0;
+    let mut times = Timings::default();
+    for restart in 0..=cfg.max_restarts {
+        while ks.s + b <= m {
+            ks.expand(op, &mut rng, &mut times)?;
+            columns += b;
+        }
+        let clock = Instant::now();
+        let ritz = ks.rayleigh_ritz()?;
+        let estimate = |j: usize| ritz.beta[j] / ritz.theta[j].abs().max(f64::MIN_POSITIVE);
+        let worst = (0..want).map(estimate).fold(0.0, f64::max);
+        if worst <= est_tol {
+            let y = ks.ritz_vectors(&ritz, want);
+            let mut u = Mat::zeros(n, want);
+            let t = Instant::now();
+            op.apply(y.as_ref(), &mut u)?;
+            times.apply += t.elapsed().as_secs_f64();
+            columns += want;
+            for j in 0..want {
+                let inv = 1.0 / ritz.theta[j];
+                u.col_as_slice_mut(j).iter_mut().for_each(|x| *x *= inv);
+            }
+            let verdict = accept(&ritz.theta[..want], y.as_ref(), u.as_ref())?;
+            let ratio = verdict.ratios.iter().copied().fold(0.0, f64::max);
+            if ratio <= 1.0 {
+                times.other += clock.elapsed().as_secs_f64();
+                return Ok(Outcome { vectors: verdict.vectors, restarts: restart, columns, timings: times });
+            }
+            // The estimate was too optimistic (uneven masses): tighten it.
+            est_tol = (est_tol * (0.5 / ratio).clamp(1e-4, 0.5)).max(1e-15);
+        }
+        if restart == cfg.max_restarts {
+            let converged = (0..want).filter(|&j| estimate(j) <= est_tol).count();
+            return Err(SpectralError::NotConverged { converged, wanted: want, restarts: restart, worst });
+        }
+        let p = (cfg.nev + (ks.s - cfg.nev) / 2).min(ks.s - b);
+        ks.restart(&ritz, p);
+        times.other += clock.elapsed().as_secs_f64();
+    }
+    // The loop returns on its last iteration.
+    Err(SpectralError::NotConverged { converged: 0, wanted: want, restarts: cfg.max_restarts, worst: f64::NAN })
+}
+
+/// The state `B V = V H + Q G` with `V = v[:, ..s]`, `Q = v[:, s..s + b]`;
+/// only columns `g_from..s` of `G` can be non-zero.
+struct KrylovSchur {
+    v: Mat<f64>,
+    h: Mat<f64>,
+    g: Mat<f64>,
+    w: Mat<f64>,
+    coef: Mat<f64>,
+    b: usize,
+    s: usize,
+    g_from: usize,
+}
+
+/// Ritz pairs of the projected matrix, largest first.
+struct Ritz {
+    theta: Vec<f64>,
+    /// Eigenvectors of `H` (s x s), columns in the order of `theta`.
+    vectors: Mat<f64>,
+    /// Residual norms `||G s_j||`.
+    beta: Vec<f64>,
+}
+
+impl KrylovSchur {
+    fn new(n: usize, m: usize, b: usize) -> Self {
+        Self {
+            v: Mat::zeros(n, m + b),
+            h: Mat::zeros(m, m),
+            g: Mat::zeros(b, m),
+            w: Mat::zeros(n, b),
+            coef: Mat::zeros(m + b, b),
+            b,
+            s: 0,
+            g_from: 0,
+        }
+    }
+
+    /// Random orthonormal start block in `Q`.
+    fn start(&mut self, rng: &mut SplitMix64) {
+        let (n, b) = (self.v.nrows(), self.b);
+        let mut q = Mat::zeros(n, b);
+        for j in 0..b {
+            rng.fill(q.col_as_slice_mut(j));
+        }
+        let norms: Vec<f64> = column_norms(&q);
+        let empty = self.v.as_ref().subcols(0, 0);
+        orthonormalize_block(empty, &mut q, &norms, rng);
+        self.v.as_mut().subcols_mut(0, b).copy_from(&q);
+    }
+
+    /// Appends `Q` to the basis and computes the next residual block:
+    /// `W = B Q`; the components the Krylov relation predicts
+    /// (`V G^T + Q A` with `A = Q^T W`) are removed first (cheap: G is
+    /// zero outside the last block except right after a restart), then one
+    /// classical Gram-Schmidt pass against the whole basis, and a second one
+    /// only for blocks that lost more than half their norm in it
+    /// (Daniel, Gragg, Kaufman and Stewart 1976).
+    fn expand<O: BlockOperator>(&mut self, op: &O, rng: &mut SplitMix64, times: &mut Timings) -> Result<()> {
+        let (s, b, from) = (self.s, self.b, self.g_from);
+        let t = s + b;
+        let clock = Instant::now();
+        op.apply(self.v.as_ref().subcols(s, b), &mut self.w)?;
+        times.apply += clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let norms: Vec<f64> = column_norms(&self.w);
+        if norms.iter().any(|x| !x.is_finite()) {
+            return Err(SpectralError::Dense("the shift-invert operator produced a non-finite vector".into()));
+        }
+        // H gains the coupling of the old basis with Q (B is symmetric).
+        for i in 0..b {
+            for j in from..s {
+                let x = self.g[(i, j)];
+                self.h[(s + i, j)] = x;
+                self.h[(j, s + i)] = x;
+            }
+        }
+        // Local step: W -= V G^T, then A = Q^T W, W -= Q A.
+        if s > from {
+            let g = self.g.as_ref().submatrix(0, from, b, s - from);
+            tall::mul(self.w.as_mut(), Accum::Add, self.v.as_ref().subcols(from, s - from), g.transpose(), -1.0);
+        }
+        let q = self.v.as_ref().subcols(s, b);
+        let mut a = Mat::zeros(b, b);
+        tall::gram(a.as_mut(), q, self.w.as_ref());
+        tall::mul(self.w.as_mut(), Accum::Add, q, a.as_ref(), -1.0);
+        // Full passes.
+        let basis = self.v.as_ref().subcols(0, t);
+        for _ in 0..2 {
+            let before: Vec<f64> = column_norms(&self.w);
+            let mut c = self.coef.as_mut().subrows_mut(0, t);
+            tall::gram(c.rb_mut(), basis, self.w.as_ref());
+            tall::mul(self.w.as_mut(), Accum::Add, basis, c.rb(), -1.0);
+            for i in 0..b {
+                for j in 0..b {
+                    a[(i, j)] += self.coef[(s + i, j)];
+                }
+            }
+            let kept = column_norms(&self.w).iter().zip(&before).all(|(a, b)| *a >= 0.5 * b);
+            if kept {
+                break;
+            }
+        }
+        for i in 0..b {
+            for j in 0..b {
+                self.h[(s + i, s + j)] = 0.5 * (a[(i, j)] + a[(j, i)]);
+            }
+        }
+        let r = orthonormalize_block(basis, &mut self.w, &norms, rng);
+        self.v.as_mut().subcols_mut(t, b).copy_from(&self.w);
+        self.g.as_mut().subcols_mut(from, s - from).fill(0.0);
+        self.g.as_mut().submatrix_mut(0, s, b, b).copy_from(&r);
+        self.s = t;
+        self.g_from = s;
+        times.orthogonalize += clock.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn rayleigh_ritz(&self) -> Result<Ritz> {
+        let s = self.s;
+        let eig = self
+            .h
+            .as_ref()
+            .submatrix(0, 0, s, s)
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|e| SpectralError::Dense(format!("projected eigenproblem: {e:?}")))?;
+        let theta: Vec<f64> = (0..s).map(|j| eig.S()[s - 1 - j]).collect();
+        let vectors = Mat::from_fn(s, s, |i, j| eig.U()[(i, s - 1 - j)]);
+        let mut gs = Mat::zeros(self.b, s);
+        matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(0, s), vectors.as_ref(), 1.0, Par::Seq);
+        let beta = column_norms(&gs);
+        Ok(Ritz { theta, vectors, beta })
+    }
+
+    /// Ritz vectors `y_j = V s_j` of the first `want` pairs.
+    fn ritz_vectors(&self, ritz: &Ritz, want: usize) -> Mat<f64> {
+        let (n, s) = (self.v.nrows(), self.s);
+        let mut y = Mat::zeros(n, want);
+        tall::mul(
+            y.as_mut(),
+            Accum::Replace,
+            self.v.as_ref().subcols(0, s),
+            ritz.vectors.as_ref().subcols(0, want),
+            1.0,
+        );
+        y
+    }
+
+    /// Thick restart keeping the first `p` Ritz pairs.
+    fn restart(&mut self, ritz: &Ritz, p: usize) {
+        let (s, b) = (self.s, self.b);
+        let sp = ritz.vectors.as_ref().subcols(0, p);
+        tall::rotate_in_place(self.v.as_mut().subcols_mut(0, s), sp);
+        // Move Q right after the kept vectors (p + b <= s: no overlap).
+        let (mut left, right) = self.v.as_mut().split_at_col_mut(s);
+        left.rb_mut().subcols_mut(p, b).copy_from(right.rb().subcols(0, b));
+        let mut gs = Mat::zeros(b, p);
+        matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(0, s), sp, 1.0, Par::Seq);
+        self.h.fill(0.0);
+        for j in 0..p {
+            self.h[(j, j)] = ritz.theta[j];
+        }
+        self.g.fill(0.0);
+        self.g.as_mut().subcols_mut(0, p).copy_from(&gs);
+        self.s = p;
+        self.g_from = 0;
+    }
+}
+
+/// Orthonormalizes the columns of `q` (already orthogonal to `prev` to
+/// working accuracy) in place, returning the upper-triangular `R` with
+/// `q_in = q_out R`. `norms` are the column norms before any
+/// orthogonalization. Matrix-matrix Cholesky QR applied twice (Fukaya et
+/// al. 2014) on the column-normalized block when it is well conditioned;
+/// otherwise modified Gram-Schmidt twice, where a column that kept less than
+/// 1e-13 of its norm is numerically dependent (an invariant subspace was
+/// found) and is replaced by a random direction orthogonal to everything
+/// (its diagonal of `R` is zero).
+fn orthonormalize_block(prev: MatRef<'_, f64>, q: &mut Mat<f64>, norms: &[f64], rng: &mut SplitMix64) -> Mat<f64> {
+    cholesky_qr2(q, norms).unwrap_or_else(|| gram_schmidt(prev, q, norms, rng))
+}
+
+/// Cholesky QR, twice; `None` (and `q` untouched) when a column is nearly
+/// dependent or the Gram matrix is too ill-conditioned for it.
+fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64]) -> Option<Mat<f64>> {
+    let b = q.ncols();
+    let scale: Vec<f64> = column_norms(q);
+    if scale.iter().zip(norms).any(|(&c, &n)| !(c > 1e-10 * n && c > 0.0)) {
+        return None;
+    }
+    let mut work = Mat::from_fn(q.nrows(), b, |i, j| q[(i, j)] / scale[j]);
+    let mut r = Mat::from_fn(b, b, |i, j| if i == j { scale[j] } else { 0.0 });
+    for _ in 0..2 {
+        let mut gram = Mat::zeros(b, b);
+        tall::gram(gram.as_mut(), work.as_ref(), work.as_ref());
+        let llt = gram.llt(Side::Lower).ok()?;
+        let l = llt.L();
+        let (dmin, dmax) = (0..b).map(|i| l[(i, i)]).fold((f64::INFINITY, 0.0f64), |(a, z), d| (a.min(d), z.max(d)));
+        if dmin.is_nan() || dmin <= 1e-5 * dmax {
+            return None;
+        }
+        let mut linv = Mat::zeros(b, b);
+        faer::linalg::triangular_inverse::invert_lower_triangular(linv.as_mut(), l, Par::Seq);
+        // work = work L^-T, R = L^T R.
+        let mut next = Mat::zeros(q.nrows(), b);
+        tall::mul(next.as_mut(), Accum::Replace, work.as_ref(), linv.transpose(), 1.0);
+        work = next;
+        r = l.transpose() * &r;
+    }
+    q.copy_from(&work);
+    Some(r)
+}
+
+/// Modified Gram-Schmidt twice with random replacement of dependent columns.
+fn gram_schmidt(prev: MatRef<'_, f64>, q: &mut Mat<f64>, norms: &[f64], rng: &mut SplitMix64) -> Mat<f64> {
+    let (n, b) = (q.nrows(), q.ncols());
+    let mut r = Mat::zeros(b, b);
+    let mut col = vec![0.0; n];
+    for i in 0..b {
+        col.copy_from_slice(q.col_as_slice(i));
+        for _ in 0..2 {
+            against_previous(q, i, &mut col, Some(&mut r));
+        }
+        let mut norm = norm2(&col);
+        if norm > 1e-13 * norms[i] && norm > 0.0 {
+            r[(i, i)] = norm;
+        } else {
+            rng.fill(&mut col);
+            for _ in 0..2 {
+                against_basis(prev, &mut col);
+                against_previous(q, i, &mut col, None);
+            }
+            norm = norm2(&col);
+        }
+        let inv = if norm > 0.0 { 1.0 / norm } else { 0.0 };
+        for (dst, &x) in q.col_as_slice_mut(i).iter_mut().zip(&col) {
+            *dst = x * inv;
+        }
+    }
+    r
+}
+
+/// Removes from `col` its components along columns `0..i` of `q`
+/// (recording them in `r[.., i]` when given).
+fn against_previous(q: &Mat<f64>, i: usize, col: &mut [f64], mut r: Option<&mut Mat<f64>>) {
+    for j in 0..i {
+        let qj = q.col_as_slice(j);
+        let d = dot(qj, col);
+        if let Some(r) = r.as_deref_mut() {
+            r[(j, i)] += d;
+        }
+        for (x, &y) in col.iter_mut().zip(qj) {
+            *x -= d * y;
+        }
+    }
+}
+
+/// `col -= P P^T col` for the orthonormal columns of `prev`.
+fn against_basis(prev: MatRef<'_, f64>, col: &mut [f64]) {
+    if prev.ncols() == 0 {
+        return;
+    }
+    let n = col.len();
+    let mut c = Mat::zeros(prev.ncols(), 1);
+    tall::gram(c.as_mut(), prev, MatRef::from_column_major_slice(col, n, 1));
+    tall::mul(MatMut::from_column_major_slice_mut(col, n, 1), Accum::Add, prev, c.as_ref(), -1.0);
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    // Four accumulators: vectorizes and is less sensitive to cancellation.
+    let mut acc = [0.0; 4];
+    let (ca, ra) = a.split_at(a.len() / 4 * 4);
+    let (cb, rb) = b.split_at(ca.len());
+    for (x, y) in ca.chunks_exact(4).zip(cb.chunks_exact(4)) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    acc[0] + acc[1] + acc[2] + acc[3] + tail
+}
+
+/// Euclidean norms of the columns (a plain dot product: faer's overflow-safe
+/// `norm_l2` is several times slower and the values here are O(1)).
+fn column_norms(m: &Mat<f64>) -> Vec<f64> {
+    (0..m.ncols()).map(|j| norm2(m.col_as_slice(j))).collect()
+}
+
+fn norm2(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Diagonal operator with given eigenvalues (repeated ones included).
+    struct Diagonal(Vec<f64>);
+
+    impl BlockOperator for Diagonal {
+        fn dim(&self) -> usize {
+            self.0.len()
+        }
+        fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
+            for j in 0..q.ncols() {
+                for i in 0..q.nrows() {
+                    w[(i, j)] = self.0[i] * q[(i, j)];
+                }
+            }
+            Ok(())
+        }
+    }
+
+    fn run(values: Vec<f64>, want: usize, block: usize) -> Outcome {
+        let n = values.len();
+        let op = Diagonal(values);
+        let nev = want + 2;
+        let basis = (nev + 3 * block).min(n - block);
+        let cfg = Config { want, nev, block, basis, tol: 1e-12, max_restarts: 500, seed: 3 };
+        solve(&op, &cfg, |theta, _, u| {
+            Ok(Verdict { ratios: vec![0.0], vectors: Mat::from_fn(1, theta.len(), |_, j| theta[j] + 0.0 * u[(0, j)]) })
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn finds_every_copy_of_a_repeated_eigenvalue() {
+        // 1 / (1 + i) with a fivefold top value: the block of 6 sees all copies.
+        let mut values: Vec<f64> = (0..400).map(|i| 1.0 / (2.0 + i as f64)).collect();
+        for v in values.iter_mut().skip(100).take(5) {
+            *v = 1.5;
+        }
+        let out = run(values, 8, 6);
+        for (j, t) in out.vectors.row(0).iter().enumerate() {
+            let expect = if j < 5 { 1.5 } else { 1.0 / (2.0 + (j - 5) as f64) };
+            assert!((t - expect).abs() < 1e-12, "{j}: {t} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn invariant_start_does_not_stall() {
+        // Rank-deficient operator: only 3 non-zero eigenvalues.
+        let mut values = vec![0.0; 60];
+        values[10] = 3.0;
+        values[20] = 2.0;
+        values[30] = 1.0;
+        let out = run(values, 3, 4);
+        let theta = out.vectors.row(0);
+        assert!((theta[0] - 3.0).abs() < 1e-12 && (theta[2] - 1.0).abs() < 1e-12, "{theta:?}");
+    }
+}

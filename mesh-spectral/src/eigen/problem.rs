@@ -1,0 +1,232 @@
+//! Checking the matrices of `L x = lambda M x` and splitting the problem into
+//! the connected components of `L`'s graph.
+//!
+//! The spectrum of a block-diagonal pencil is the union of the spectra of its
+//! blocks, so each component is solved on its own: a mesh with `c` pieces has
+//! the eigenvalue 0 exactly `c` times (one indicator function per piece) and
+//! identical pieces repeat every eigenvalue; solving per component finds
+//! every copy whatever the block size. Components whose total mass is zero
+//! (isolated vertices, pieces made only of zero-area triangles) carry no
+//! finite eigenvalue and are excluded: their vertices get zero in every
+//! eigenvector. Zero-mass vertices inside a massive component stay: they are
+//! constraints `(L x)_i = 0`, solved exactly by the harmonic extension.
+
+use sprs::CsMat;
+
+use crate::error::{Result, SpectralError};
+
+/// One connected component of the graph of `L`.
+#[derive(Debug, Clone)]
+pub(crate) struct Component {
+    /// Global indices of its vertices, ascending.
+    pub vertices: Vec<usize>,
+    /// `L` restricted to the component (local indices, CSR).
+    pub laplacian: CsMat<f64>,
+    /// Lumped mass of each local vertex (non-negative).
+    pub mass: Vec<f64>,
+    /// Number of vertices with positive mass (= number of finite eigenvalues).
+    pub massive: usize,
+    /// Total mass (the area of the piece for a mesh).
+    pub area: f64,
+}
+
+/// The checked and split problem.
+#[derive(Debug, Clone)]
+pub(crate) struct Problem {
+    /// Number of rows of `L`.
+    pub n: usize,
+    /// Components with positive total mass, ordered by smallest vertex.
+    pub components: Vec<Component>,
+    /// Vertices of massless components, ascending.
+    pub excluded: Vec<usize>,
+}
+
+impl Problem {
+    /// Number of finite eigenvalues of the whole pencil.
+    pub fn available(&self) -> usize {
+        self.components.iter().map(|c| c.massive).sum()
+    }
+}
+
+fn invalid(name: &'static str, reason: String) -> SpectralError {
+    SpectralError::InvalidMatrix { name, reason }
+}
+
+/// Checks `L` (square, finite, symmetric) and `M` (same size, diagonal,
+/// finite, non-negative) and splits them by connected components. O(nnz log d).
+pub(crate) fn split(l: &CsMat<f64>, m: &CsMat<f64>) -> Result<Problem> {
+    let n = check_laplacian(l)?;
+    let mass = check_mass(m, n)?;
+    let l = if l.is_csr() { l.clone() } else { l.to_csr() };
+    let roots = union_find_components(&l);
+    // Group vertices by root, in order of first appearance (smallest vertex).
+    let mut slot = vec![usize::MAX; n];
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for v in 0..n {
+        let r = roots[v];
+        if slot[r] == usize::MAX {
+            slot[r] = groups.len();
+            groups.push(Vec::new());
+        }
+        groups[slot[r]].push(v);
+    }
+    let mut components = Vec::new();
+    let mut excluded = Vec::new();
+    let mut local = vec![usize::MAX; n];
+    for vertices in groups {
+        let area: f64 = vertices.iter().map(|&v| mass[v]).sum();
+        if area <= 0.0 {
+            excluded.extend_from_slice(&vertices);
+            continue;
+        }
+        for (i, &v) in vertices.iter().enumerate() {
+            local[v] = i;
+        }
+        let laplacian = restrict(&l, &vertices, &local);
+        let cmass: Vec<f64> = vertices.iter().map(|&v| mass[v]).collect();
+        let massive = cmass.iter().filter(|&&x| x > 0.0).count();
+        components.push(Component { vertices, laplacian, mass: cmass, massive, area });
+    }
+    excluded.sort_unstable();
+    Ok(Problem { n, components, excluded })
+}
+
+fn check_laplacian(l: &CsMat<f64>) -> Result<usize> {
+    let (r, c) = l.shape();
+    if r != c {
+        return Err(invalid("L", format!("is {r} x {c}, not square")));
+    }
+    if let Some(bad) = l.data().iter().find(|v| !v.is_finite()) {
+        return Err(invalid("L", format!("has a non-finite entry ({bad})")));
+    }
+    let scale = l.data().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let tol = 1e-10 * scale;
+    for (v, (i, j)) in l.iter() {
+        if i != j {
+            let t = l.get(j, i).copied().unwrap_or(0.0);
+            if (v - t).abs() > tol {
+                return Err(invalid("L", format!("is not symmetric: L[{i},{j}] = {v} but L[{j},{i}] = {t}")));
+            }
+        }
+    }
+    Ok(r)
+}
+
+fn check_mass(m: &CsMat<f64>, n: usize) -> Result<Vec<f64>> {
+    if m.shape() != (n, n) {
+        return Err(SpectralError::Dimension(format!("M is {} x {}, L is {n} x {n}", m.rows(), m.cols())));
+    }
+    let mut mass = vec![0.0; n];
+    for (&v, (i, j)) in m.iter() {
+        if !v.is_finite() {
+            return Err(invalid("M", format!("has a non-finite entry ({v})")));
+        }
+        if i != j {
+            if v != 0.0 {
+                return Err(invalid("M", format!("must be diagonal (lumped), but M[{i},{j}] = {v}")));
+            }
+            continue;
+        }
+        mass[i] += v;
+    }
+    if let Some(i) = mass.iter().position(|&x| x < 0.0) {
+        return Err(invalid("M", format!("has a negative mass M[{i},{i}] = {}", mass[i])));
+    }
+    Ok(mass)
+}
+
+/// Root of each vertex's component in the graph of the non-zero
+/// off-diagonal entries (union-find with path halving). O(nnz alpha(n)).
+fn union_find_components(l: &CsMat<f64>) -> Vec<usize> {
+    let n = l.rows();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for (i, row) in l.outer_iterator().enumerate() {
+        for (j, &v) in row.iter() {
+            if j != i && v != 0.0 {
+                let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                if a != b {
+                    // Smaller index becomes the root: deterministic.
+                    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+                    parent[hi] = lo;
+                }
+            }
+        }
+    }
+    (0..n).map(|v| find(&mut parent, v)).collect()
+}
+
+/// Rows and columns `vertices` of the CSR matrix `l`, renumbered by `local`.
+fn restrict(l: &CsMat<f64>, vertices: &[usize], local: &[usize]) -> CsMat<f64> {
+    let mut indptr = Vec::with_capacity(vertices.len() + 1);
+    let mut indices = Vec::new();
+    let mut data = Vec::new();
+    indptr.push(0);
+    for &v in vertices {
+        if let Some(row) = l.outer_view(v) {
+            for (j, &x) in row.iter() {
+                // Every neighbour through a non-zero lies in the component;
+                // explicit zeros to other components are dropped.
+                if x != 0.0 || j == v {
+                    let lj = local[j];
+                    if lj < vertices.len() && vertices[lj] == j {
+                        indices.push(lj);
+                        data.push(x);
+                    }
+                }
+            }
+        }
+        indptr.push(indices.len());
+    }
+    CsMat::new((vertices.len(), vertices.len()), indptr, indices, data)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sprs::TriMat;
+
+    fn path(n: usize, edges: &[(usize, usize)]) -> CsMat<f64> {
+        let mut t = TriMat::new((n, n));
+        for &(a, b) in edges {
+            t.add_triplet(a, b, -1.0);
+            t.add_triplet(b, a, -1.0);
+            t.add_triplet(a, a, 1.0);
+            t.add_triplet(b, b, 1.0);
+        }
+        t.to_csr()
+    }
+
+    #[test]
+    fn components_and_exclusion() {
+        let l = path(6, &[(0, 2), (2, 4), (1, 3)]);
+        let m = mesh_core::operators::mass::diagonal(vec![1.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
+        let p = split(&l, &m).unwrap();
+        assert_eq!(p.components.len(), 1);
+        assert_eq!(p.components[0].vertices, vec![0, 2, 4]);
+        assert_eq!(p.excluded, vec![1, 3, 5]);
+        assert_eq!(p.available(), 3);
+    }
+
+    #[test]
+    fn rejects_bad_matrices() {
+        let l = path(3, &[(0, 1)]);
+        let good = mesh_core::operators::mass::diagonal(vec![1.0; 3]);
+        assert!(split(&l, &mesh_core::operators::mass::diagonal(vec![1.0; 2])).is_err());
+        assert!(split(&l, &mesh_core::operators::mass::diagonal(vec![1.0, -1.0, 1.0])).is_err());
+        assert!(split(&l, &mesh_core::operators::mass::diagonal(vec![1.0, f64::NAN, 1.0])).is_err());
+        let mut t = TriMat::new((3, 3));
+        t.add_triplet(0, 1, 1.0);
+        assert!(split(&t.to_csr(), &good).is_err(), "non-symmetric L");
+        assert!(split(&l, &l).is_err(), "non-diagonal M");
+        let mut t = TriMat::new((3, 2));
+        t.add_triplet(0, 1, 1.0);
+        assert!(split(&t.to_csr(), &good).is_err(), "non-square L");
+    }
+}
