@@ -30,7 +30,7 @@ impl Default for ReadOptions {
     }
 }
 
-/// Options of [`write`] and [`write_to`].
+/// Options of [`write()`] and [`write_to`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct WriteOptions {
     /// The format, instead of the one the file name's extension gives.

@@ -3,7 +3,7 @@
 //! texture coordinates, colours and named per-vertex scalars each format can
 //! carry, into the [`mesh_core::TriMesh`] of the mesh workspace.
 //!
-//! - [`read`] / [`write`]: by file name (format from the extension, content
+//! - [`read`] / [`write()`]: by file name (format from the extension, content
 //!   checked against it, writes atomic); [`read_from`] / [`write_to`] for
 //!   memory and streams.
 //! - [`MeshData`]: the mesh and its attributes as read, with a [`ReadReport`]

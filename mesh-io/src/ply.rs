@@ -36,7 +36,7 @@ pub enum PlyEncoding {
     BinaryBigEndian,
 }
 
-/// Options of [`write`].
+/// Options of [`write()`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PlyOptions {
     /// Body encoding.
