@@ -96,7 +96,7 @@ const ODD: u8 = 2;
 
 /// The grouping of faces into quadruples, grown from seeds.
 struct Grouping<'a> {
-    topo: &'a Topology,
+    topo: &'a Topology<'a>,
     /// Per face: `4 q + k` for corner k of group q, `4 q + 3` for its centre.
     role: Vec<u32>,
     label: Vec<u8>,
@@ -109,7 +109,7 @@ struct Grouping<'a> {
 }
 
 impl<'a> Grouping<'a> {
-    fn new(topo: &'a Topology) -> Self {
+    fn new(topo: &'a Topology<'a>) -> Self {
         Self {
             topo,
             role: vec![UNSET; topo.face_count()],
@@ -212,7 +212,7 @@ impl<'a> Grouping<'a> {
 
 /// `true` for a vertex that cannot be an edge midpoint of a 4-to-1 split
 /// (interior valence other than 6, boundary valence other than 4).
-fn must_be_even(topo: &Topology, v: u32) -> bool {
+fn must_be_even(topo: &Topology<'_>, v: u32) -> bool {
     match topo.kind(v) {
         Kind::Interior => topo.valence(v) != 6,
         Kind::Boundary => topo.valence(v) != 4,
@@ -222,7 +222,7 @@ fn must_be_even(topo: &Topology, v: u32) -> bool {
 
 /// Reverses one 4-to-1 split of the manifold mesh `faces` (with topology
 /// `topo`), giving the coarse mesh and its topology, or says why not.
-fn reverse(topo: &Topology, faces: &[[u32; 3]]) -> Result<(Reversal, Topology), String> {
+fn reverse(topo: &Topology<'_>, faces: &[[u32; 3]]) -> Result<(Reversal, Topology<'static>), String> {
     let nf = faces.len();
     if nf % 4 != 0 {
         return Err(format!("{nf} faces is not a multiple of 4"));
@@ -287,7 +287,7 @@ fn reverse(topo: &Topology, faces: &[[u32; 3]]) -> Result<(Reversal, Topology), 
 }
 
 /// The coarse mesh of a complete grouping, after the global checks.
-fn build_reversal(topo: &Topology, g: Grouping<'_>) -> Result<(Reversal, Topology), String> {
+fn build_reversal(topo: &Topology<'_>, g: Grouping<'_>) -> Result<(Reversal, Topology<'static>), String> {
     let n = topo.vertex_count();
     let mut coarse_of = vec![UNSET; n];
     let mut evens = Vec::new();
@@ -317,7 +317,8 @@ fn build_reversal(topo: &Topology, g: Grouping<'_>) -> Result<(Reversal, Topolog
             }
         }
     }
-    let coarse = Topology::new(evens.len(), &coarse_faces).map_err(|_| "the coarser mesh would not be manifold")?;
+    let coarse =
+        Topology::new(evens.len(), &coarse_faces).map_err(|_| "the coarser mesh would not be manifold")?.into_owned();
     let odd = n - evens.len();
     if coarse.edge_count() != odd {
         return Err(format!("{odd} edge midpoints for {} coarse edges", coarse.edge_count()));

@@ -28,7 +28,7 @@ pub struct Hierarchy {
     faces: Vec<Vec<[u32; 3]>>,
     parents: Vec<Vec<[u32; 2]>>,
     to_input: Option<Vec<u32>>,
-    topology: Vec<OnceLock<Topology>>,
+    topology: Vec<OnceLock<Topology<'static>>>,
 }
 
 impl Hierarchy {
@@ -95,7 +95,7 @@ impl Hierarchy {
         let mut parents = Vec::with_capacity(levels);
         let mut topology = Vec::with_capacity(levels);
         for j in 0..levels {
-            let topo = manifold_topology(counts[j], &all_faces[j])?;
+            let topo = manifold_topology(counts[j], &all_faces[j])?.into_owned();
             let fine = split_faces(&topo, &all_faces[j], counts[j] as u32);
             parents.push(topo.edges().to_vec());
             counts.push(counts[j] + topo.edge_count());
@@ -150,10 +150,10 @@ impl Hierarchy {
 
     /// Half-edge topology of K^j for `j < J`, built on first use in O(F_j)
     /// and cached; an error if K^j is not an oriented manifold.
-    pub(crate) fn topology(&self, level: usize) -> Result<&Topology> {
+    pub(crate) fn topology(&self, level: usize) -> Result<&Topology<'static>> {
         let cell = &self.topology[level];
         if cell.get().is_none() {
-            let _ = cell.set(manifold_topology(self.counts[level], &self.faces[level])?);
+            let _ = cell.set(manifold_topology(self.counts[level], &self.faces[level])?.into_owned());
         }
         cell.get().ok_or_else(|| WaveletError::Dimension(format!("no topology for level {level}")))
     }

@@ -13,6 +13,15 @@ use crate::topology::{Kind, Topology};
 /// Loop's (1987) even-vertex weight for an interior vertex of valence `n`:
 /// `beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n`. Cost O(1).
 pub fn loop_beta(n: usize) -> f64 {
+    const TABLE: usize = 16;
+    static BETA: std::sync::OnceLock<[f64; TABLE]> = std::sync::OnceLock::new();
+    if n < TABLE {
+        return BETA.get_or_init(|| std::array::from_fn(beta_formula))[n];
+    }
+    beta_formula(n)
+}
+
+fn beta_formula(n: usize) -> f64 {
     let n = n.max(1) as f64;
     let c = 3.0 / 8.0 + 0.25 * (TAU / n).cos();
     (5.0 / 8.0 - c * c) / n
@@ -195,6 +204,28 @@ fn boundary_neighbor_other_than(topo: &Topology, v: u32, not: u32) -> Option<u32
         Some(first)
     } else {
         None
+    }
+}
+
+/// Loop's even rule applied directly to positions `p` of K^j: interior
+/// `(1 - n beta) v + beta sum v_k`, boundary `3/4 v + 1/8 (v_prev + v_next)`,
+/// isolated vertices unchanged. Cost O(valence).
+pub(crate) fn loop_even(topo: &Topology, p: &[glam::DVec3], v: u32) -> glam::DVec3 {
+    let out = topo.out(v);
+    let pv = p[v as usize];
+    match topo.kind(v) {
+        Kind::Interior => {
+            let beta = loop_beta(out.len());
+            let sum: glam::DVec3 = out.iter().map(|&h| p[topo.dest(h) as usize]).sum();
+            pv * (1.0 - out.len() as f64 * beta) + sum * beta
+        }
+        Kind::Boundary => match (out.first(), out.last()) {
+            (Some(&first), Some(&last)) => {
+                pv * 0.75 + (p[topo.dest(first) as usize] + p[topo.opposite(last) as usize]) * 0.125
+            }
+            _ => pv,
+        },
+        Kind::Isolated => pv,
     }
 }
 

@@ -1,13 +1,12 @@
 //! Subdivision surfaces by recursive 4-to-1 splitting (seed figure 2.13):
 //! midpoint, Loop and modified butterfly.
 
-use glam::DVec3;
 use mesh_core::{shapes, MeshError, TriMesh};
 
 use crate::error::Result;
-use crate::filter::LevelFilter;
 use crate::hierarchy::{check_size, split_faces};
-use crate::scheme::{Scheme, WaveletKind};
+use crate::rules::{self, Scratch};
+use crate::scheme::Scheme;
 use crate::topology::{manifold_topology, Topology};
 
 /// Splits every triangle of `mesh` into four, `levels` times, placing the
@@ -36,10 +35,11 @@ pub fn subdivide(mesh: &TriMesh, scheme: Scheme, levels: usize) -> Result<TriMes
     Ok(current)
 }
 
-/// One level: the synthesis step of the lazy filter bank with zero wavelet
-/// coefficients, on the lean topology (same numbering as
+/// One level on the lean topology (same numbering as
 /// [`mesh_core::shapes::midpoint_subdivide`], which handles the midpoint
-/// scheme on non-manifold meshes).
+/// scheme on non-manifold meshes). The masks are those of the filter banks'
+/// predict steps, applied directly; with zero coefficients the synthesis
+/// step gives the same positions (tested through the matrix P).
 fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
     let topo = match Topology::new(mesh.vertex_count(), mesh.faces()) {
         Ok(t) => t,
@@ -49,12 +49,36 @@ fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
         }
         Err(_) => manifold_topology(mesh.vertex_count(), mesh.faces())?,
     };
-    let parents = topo.edges();
-    let filter = LevelFilter::new(&topo, parents, scheme, WaveletKind::Lazy)?;
-    let mut positions = Vec::with_capacity(mesh.vertex_count() + parents.len());
-    positions.extend_from_slice(mesh.positions());
-    positions.resize(mesh.vertex_count() + parents.len(), DVec3::ZERO);
-    filter.synthesize(&mut positions)?;
-    let faces = split_faces(&topo, mesh.faces(), mesh.vertex_count() as u32);
+    let (n, p) = (mesh.vertex_count(), mesh.positions());
+    let mut positions = Vec::with_capacity(n + topo.edge_count());
+    match scheme {
+        Scheme::Loop => positions.extend((0..n as u32).map(|v| rules::loop_even(&topo, p, v))),
+        _ => positions.extend_from_slice(p),
+    }
+    let mut scratch = Scratch::default();
+    let mut row = Vec::with_capacity(16);
+    let mut opposite = Vec::with_capacity(2);
+    for (e, &[a, b]) in topo.edges().iter().enumerate() {
+        let (pa, pb) = (p[a as usize], p[b as usize]);
+        let odd = match scheme {
+            Scheme::Midpoint => (pa + pb) * 0.5,
+            Scheme::Loop => {
+                // The mask of rules::odd_mask, inlined.
+                topo.edge_opposites(e as u32, &mut opposite);
+                match opposite[..] {
+                    [c, d] => (pa + pb) * 0.375 + (p[c as usize] + p[d as usize]) * 0.125,
+                    _ => (pa + pb) * 0.5,
+                }
+            }
+            Scheme::Butterfly => {
+                topo.edge_opposites(e as u32, &mut opposite);
+                row.clear();
+                rules::odd_mask(&topo, scheme, a, b, &opposite, &mut scratch, &mut row);
+                row.iter().map(|&(v, w)| p[v as usize] * w).sum()
+            }
+        };
+        positions.push(odd);
+    }
+    let faces = split_faces(&topo, mesh.faces(), n as u32);
     Ok(TriMesh::new(positions, faces)?)
 }

@@ -11,13 +11,15 @@
 //! `Connectivity` alone takes more than that budget. On any manifold defect
 //! it gives up, and callers ask `mesh_core` for the precise report.
 
+use std::borrow::Cow;
+
 use mesh_core::{Connectivity, MeshError};
 
 use crate::error::{Result, WaveletError};
 
 /// Builds the topology, or the precise [`MeshError::NonManifold`] report of
 /// `mesh_core` when the mesh is not an oriented 2-manifold. Cost O(V + F).
-pub(crate) fn manifold_topology(n: usize, faces: &[[u32; 3]]) -> Result<Topology> {
+pub(crate) fn manifold_topology(n: usize, faces: &[[u32; 3]]) -> Result<Topology<'_>> {
     Topology::new(n, faces).map_err(|NotManifold| match Connectivity::new(n, faces).require_manifold() {
         Err(e) => WaveletError::Mesh(e),
         Ok(()) => WaveletError::Mesh(MeshError::Topology {
@@ -41,10 +43,11 @@ pub(crate) enum Kind {
     Boundary,
 }
 
-/// Half-edge topology of an oriented 2-manifold triangle mesh.
+/// Half-edge topology of an oriented 2-manifold triangle mesh; the corner
+/// array is the face list itself (borrowed) or a copy.
 #[derive(Debug, Clone)]
-pub(crate) struct Topology {
-    corner: Vec<u32>,
+pub(crate) struct Topology<'a> {
+    corner: Cow<'a, [u32]>,
     twin: Vec<u32>,
     edge_of: Vec<u32>,
     edges: Vec<[u32; 2]>,
@@ -76,83 +79,89 @@ fn prev(h: u32) -> u32 {
     }
 }
 
-impl Topology {
+impl<'a> Topology<'a> {
     /// Builds the topology of `faces` over `n` vertices (indices in range).
     /// Cost O(V + F).
-    pub(crate) fn new(n: usize, faces: &[[u32; 3]]) -> std::result::Result<Self, NotManifold> {
-        let corner: Vec<u32> = faces.iter().flatten().copied().collect();
+    pub(crate) fn new(n: usize, faces: &'a [[u32; 3]]) -> std::result::Result<Self, NotManifold> {
+        let corner = faces.as_flattened();
         let nh = corner.len();
         // Outgoing half-edges by origin (counting sort), with their
         // destinations alongside so that the scans below stay sequential.
         let mut out_start = vec![0u32; n + 1];
-        for &v in &corner {
+        for &v in corner {
             out_start[v as usize + 1] += 1;
         }
         for v in 0..n {
             out_start[v + 1] += out_start[v];
         }
-        let mut fill = out_start.clone();
+        // Scatter with out_start[v] as the fill pointer of v, then shift back.
         let mut out = vec![0u32; nh];
         let mut out_dest = vec![0u32; nh];
         for h in 0..nh {
             let v = corner[h] as usize;
-            let p = fill[v] as usize;
+            let p = out_start[v] as usize;
             out[p] = h as u32;
             out_dest[p] = corner[next(h as u32) as usize];
-            fill[v] += 1;
+            out_start[v] += 1;
         }
-        drop(fill);
+        for v in (1..=n).rev() {
+            out_start[v] = out_start[v - 1];
+        }
+        out_start[0] = 0;
         let range = |v: u32| out_start[v as usize] as usize..out_start[v as usize + 1] as usize;
-        // Twins: the half-edge v -> u among the outgoing ones of v. Two
-        // half-edges u -> v, or two v -> u, mean a non-manifold edge or
-        // inconsistent orientation.
+        // One pass over the vertices u in order. Twins are searched from the
+        // smaller endpoint: u -> v (v > u) among the outgoing half-edges of v.
+        // The edges (u, w) with w > u are those of the half-edges u -> w and
+        // of the incoming w -> u (prev of an outgoing one), deduplicated, so
+        // boundary edges entering u are found too. Two half-edges u -> v, or
+        // two v -> u, mean a non-manifold edge or inconsistent orientation:
+        // they show up as a repeated bucket entry at the smaller endpoint.
         let mut twin = vec![NONE; nh];
+        let mut edge_of = vec![NONE; nh];
         let mut edges = Vec::with_capacity(nh / 2 + 1);
         let mut edge_he = Vec::with_capacity(nh / 2 + 1);
-        let mut late: Vec<[u32; 3]> = Vec::new();
+        let mut bucket: Vec<(u32, u32, u32)> = Vec::new();
         for u in 0..n as u32 {
             let ru = range(u);
-            for p in ru.clone() {
-                let v = out_dest[p];
-                if out_dest[ru.clone()].iter().filter(|&&w| w == v).count() > 1 {
-                    return Err(NotManifold);
-                }
-                let rv = range(v);
-                let mut found = NONE;
-                for q in rv {
-                    if out_dest[q] == u {
-                        if found != NONE {
-                            return Err(NotManifold);
-                        }
-                        found = out[q];
-                    }
-                }
-                twin[out[p] as usize] = found;
-                if found == NONE && v < u {
-                    late.push([v, u, out[p]]);
-                }
-            }
-        }
-        // Edges sorted by (lo, hi): those leaving their smaller endpoint, plus
-        // the boundary half-edges that enter it (`late`, sorted).
-        late.sort_unstable();
-        let mut late = late.into_iter().peekable();
-        let mut edge_of = vec![NONE; nh];
-        let mut bucket: Vec<(u32, u32)> = Vec::new();
-        for u in 0..n as u32 {
             bucket.clear();
-            bucket.extend(range(u).filter(|&p| out_dest[p] > u).map(|p| (out_dest[p], out[p])));
-            while let Some(&[lo, hi, h]) = late.peek() {
-                if lo != u {
-                    break;
+            for p in ru.clone() {
+                let (h, v) = (out[p], out_dest[p]);
+                if v > u {
+                    let mut found = NONE;
+                    for q in range(v) {
+                        if out_dest[q] == u {
+                            if found != NONE {
+                                return Err(NotManifold);
+                            }
+                            found = out[q];
+                        }
+                    }
+                    twin[h as usize] = found;
+                    if found != NONE {
+                        twin[found as usize] = h;
+                    }
+                    bucket.push((v, 0, h));
                 }
-                bucket.push((hi, h));
-                late.next();
+                let g = prev(h);
+                let w = corner[g as usize];
+                if w > u {
+                    bucket.push((w, 1, g));
+                }
             }
             if bucket.len() > 1 {
                 bucket.sort_unstable();
             }
-            for &(hi, h) in &bucket {
+            let mut last = (NONE, 0);
+            for &(hi, kind, h) in &bucket {
+                if (hi, kind) == last {
+                    // Two half-edges u -> hi, or two hi -> u.
+                    return Err(NotManifold);
+                }
+                let repeat = hi == last.0;
+                last = (hi, kind);
+                if repeat {
+                    continue;
+                }
                 let e = edges.len() as u32;
                 edges.push([u, hi]);
                 edge_he.push(h);
@@ -162,10 +171,28 @@ impl Topology {
                 }
             }
         }
+        if edge_of.contains(&NONE) {
+            return Err(NotManifold);
+        }
         drop(out_dest);
+        let corner = Cow::Borrowed(corner);
         let mut topo = Self { corner, twin, edge_of, edges, edge_he, out_start, out, kind: vec![Kind::Isolated; n] };
         topo.order_fans()?;
         Ok(topo)
+    }
+
+    /// The same topology owning its corner array.
+    pub(crate) fn into_owned(self) -> Topology<'static> {
+        Topology {
+            corner: Cow::Owned(self.corner.into_owned()),
+            twin: self.twin,
+            edge_of: self.edge_of,
+            edges: self.edges,
+            edge_he: self.edge_he,
+            out_start: self.out_start,
+            out: self.out,
+            kind: self.kind,
+        }
     }
 
     /// Orders each vertex's outgoing half-edges counter-clockwise (from the
@@ -405,6 +432,33 @@ mod tests {
         same_as_connectivity(&shapes::disk(4, 3).unwrap());
         same_as_connectivity(&shapes::cylinder(1.0, 1.0, 7, 3).unwrap());
         same_as_connectivity(&shapes::grid(1.0, 1.0, 3, 2).unwrap());
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(400))]
+
+        /// On random triangle soups (mostly non-manifold) the lean build
+        /// accepts exactly what mesh-core calls an oriented manifold, and then
+        /// agrees with it.
+        #[test]
+        fn agrees_with_mesh_core_on_random_soups(
+            n in 3usize..9,
+            raw in proptest::collection::vec((0u32..9, 0u32..9, 0u32..9), 1..14),
+        ) {
+            let faces: Vec<[u32; 3]> = raw
+                .into_iter()
+                .map(|(a, b, c)| [a % n as u32, b % n as u32, c % n as u32])
+                .filter(|&[a, b, c]| a != b && b != c && a != c)
+                .collect();
+            proptest::prop_assume!(!faces.is_empty());
+            let mesh = mesh_core::TriMesh::new(vec![mesh_core::glam::DVec3::ZERO; n], faces.clone()).unwrap();
+            let manifold = mesh.connectivity().is_manifold();
+            let ours = Topology::new(n, &faces);
+            proptest::prop_assert_eq!(ours.is_ok(), manifold, "{:?}", faces);
+            if manifold {
+                same_as_connectivity(&mesh);
+            }
+        }
     }
 
     #[test]
