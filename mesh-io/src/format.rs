@@ -65,7 +65,7 @@ impl Format {
             Some(Format::Glb)
         } else if first_word.ends_with(b"OFF") {
             Some(Format::Off)
-        } else if first_word == b"solid" || crate::stl::is_binary(bytes) {
+        } else if first_word.eq_ignore_ascii_case(b"solid") || crate::stl::is_binary(bytes) {
             Some(Format::Stl)
         } else if text.starts_with(b"{") {
             Some(Format::Gltf)

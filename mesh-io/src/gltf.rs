@@ -384,9 +384,24 @@ impl Parts {
             self.positions.push(p);
         }
         let indices = p.indices.map(|i| accessor(root, buffers, i.value(), &[1])).transpose()?;
-        let corner = |c: usize| indices.as_ref().map_or(c as f64, |e| e.get(c, 0));
-        let flip = m.determinant() < 0.0;
-        for (t, corners) in corner_triples(mode, indices.as_ref().map_or(nv, |e| e.count)).enumerate() {
+        self.triangles(mode, indices.as_ref(), nv, base, m.determinant() < 0.0)?;
+        self.attributes(p, &get, nv, m)?;
+        self.primitives += 1;
+        Ok(())
+    }
+
+    /// Appends the triangles of a primitive whose `nv` vertices start at
+    /// `base`, reversed when `flip` (mirroring transform).
+    fn triangles(
+        &mut self,
+        mode: json::mesh::Mode,
+        indices: Option<&Elements<'_>>,
+        nv: usize,
+        base: usize,
+        flip: bool,
+    ) -> Result<()> {
+        let corner = |c: usize| indices.map_or(c as f64, |e| e.get(c, 0));
+        for (t, corners) in corner_triples(mode, indices.map_or(nv, |e| e.count)).enumerate() {
             let mut tri = [0u32; 3];
             for (v, &c) in tri.iter_mut().zip(&corners) {
                 let i = corner(c);
@@ -402,8 +417,6 @@ impl Parts {
             let Self { report, faces, .. } = self;
             report.triangulate(&tri, |_, t| faces.push(t));
         }
-        self.attributes(p, &get, nv, m)?;
-        self.primitives += 1;
         Ok(())
     }
 
@@ -696,6 +709,16 @@ mod tests {
         d.colors = Some(vec![[1.0, 0.5, 0.25, 1.0]; 4]);
         d.scalars = vec![("mean".into(), vec![0.5, 1.5, 2.5, 3.5])];
         d
+    }
+
+    #[test]
+    fn strips_and_fans() {
+        use json::mesh::Mode;
+        let strip: Vec<_> = corner_triples(Mode::TriangleStrip, 5).collect();
+        assert_eq!(strip, [[0, 1, 2], [2, 1, 3], [2, 3, 4]]);
+        let fan: Vec<_> = corner_triples(Mode::TriangleFan, 5).collect();
+        assert_eq!(fan, [[0, 1, 2], [0, 2, 3], [0, 3, 4]]);
+        assert_eq!(corner_triples(Mode::Triangles, 7).count(), 2);
     }
 
     #[test]

@@ -44,7 +44,8 @@ fn triangle_count(bytes: &[u8]) -> Option<u32> {
 /// `weld_tolerance` (`Some(0.0)`: identical positions; `None`: no welding,
 /// three vertices per triangle). Cost O(n log n) for `n` triangles.
 pub fn read(bytes: &[u8], weld_tolerance: Option<f64>) -> Result<MeshData> {
-    let ascii = !is_binary(bytes) && bytes.trim_ascii_start().starts_with(b"solid");
+    let ascii =
+        !is_binary(bytes) && bytes.trim_ascii_start().get(..5).is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
     let (corners, mut report) = if ascii { read_ascii(bytes)? } else { read_binary(bytes)? };
     let faces: Vec<[u32; 3]> = (0..corners.len() as u32 / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
     let at = Location::new(Format::Stl);
@@ -108,21 +109,22 @@ fn read_ascii(bytes: &[u8]) -> Result<(Vec<DVec3>, ReadReport)> {
     let mut in_facet = 0usize;
     let mut ended = false;
     while s.skip_to_content() {
-        match s.word().unwrap_or_default() {
-            b"vertex" => {
-                let at = s.at();
-                let p = DVec3::new(s.float("coordinate x")?, s.float("coordinate y")?, s.float("coordinate z")?);
-                corners.push(finite(p, corners.len(), &at)?);
-                in_facet += 1;
-            }
-            b"endfacet" if in_facet != 3 => {
+        let word = s.word().unwrap_or_default();
+        let is = |keyword: &str| word.eq_ignore_ascii_case(keyword.as_bytes());
+        if is("vertex") {
+            let at = s.at();
+            let p = DVec3::new(s.float("coordinate x")?, s.float("coordinate y")?, s.float("coordinate z")?);
+            corners.push(finite(p, corners.len(), &at)?);
+            in_facet += 1;
+        } else if is("endfacet") {
+            if in_facet != 3 {
                 return Err(IoError::syntax(s.at(), "3 vertices per facet", in_facet.to_string().as_bytes()));
             }
-            b"endfacet" => in_facet = 0,
-            b"endsolid" => ended = true,
-            b"solid" => ended = false,
-            b"facet" | b"outer" | b"endloop" => {}
-            other => return Err(IoError::syntax(s.at(), "an ascii STL keyword", other)),
+            in_facet = 0;
+        } else if is("solid") || is("endsolid") {
+            ended = is("endsolid");
+        } else if !(is("facet") || is("outer") || is("endloop")) {
+            return Err(IoError::syntax(s.at(), "an ascii STL keyword", word));
         }
         s.next_line();
     }
@@ -227,6 +229,12 @@ endsolid t
         assert_eq!((d.report.vertices_welded, d.report.faces_dropped), (5, 1));
         let loose = read(TETRA, None).unwrap();
         assert_eq!((loose.mesh.vertex_count(), loose.mesh.face_count()), (9, 3));
+    }
+
+    #[test]
+    fn ascii_keywords_in_any_case() {
+        let upper = String::from_utf8_lossy(TETRA).to_uppercase();
+        assert_eq!(read(upper.as_bytes(), Some(0.0)).unwrap().mesh.face_count(), 2);
     }
 
     #[test]
