@@ -306,26 +306,3 @@ mod tests {
         assert!(solve_spd(&s, &mut [1.0, 1.0, 1.0], 1e-12).is_none());
     }
 }
-
-#[cfg(test)]
-mod speed {
-    #[test]
-    #[ignore]
-    fn solve_speed() {
-        let mut a = [[0.0; 14]; 14];
-        for i in 0..14 {
-            for j in 0..14 {
-                a[i][j] = 1.0 / (1.0 + (i as f64 - j as f64).abs());
-            }
-            a[i][i] += 14.0;
-        }
-        let t = std::time::Instant::now();
-        let mut acc = 0.0;
-        for k in 0..100_000 {
-            let mut b = [k as f64; 14];
-            super::solve_spd(std::hint::black_box(&a), &mut b, 1e-10).unwrap();
-            acc += b[0];
-        }
-        eprintln!("{:.3} us per solve ({acc})", t.elapsed().as_secs_f64() * 1e6 / 1e5);
-    }
-}

@@ -58,9 +58,12 @@ impl GaussianCurvature {
 /// `pi` minus the others, so each face's angles sum to pi exactly), in
 /// parallel over faces with the `rayon` feature.
 pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
-    let angles = corner_angles(mesh);
     let conn = mesh.connectivity();
-    let area = vertex_areas(mesh, options.area);
+    let (angles, area) = par::join(|| corner_angles(mesh), || vertex_areas(mesh, options.area));
+    let sums = par::map(mesh.vertex_count(), |i| {
+        let v = mesh_core::VertexId::new(i);
+        compensated_sum(conn.outgoing(v).iter().map(|h| angles[h.face().idx()][h.corner()]))
+    });
     let mut status = topological_status(mesh);
     let n = mesh.vertex_count();
     let mut integrated = vec![0.0; n];
@@ -72,7 +75,7 @@ pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<G
         if matches!(kind, VertexKind::Isolated | VertexKind::NonManifold) {
             continue;
         }
-        let sum = compensated_sum(conn.outgoing(v).iter().map(|h| angles[h.face().idx()][h.corner()]));
+        let sum = sums[i];
         if kind == VertexKind::Boundary {
             geodesic[i] = PI - sum;
             continue;

@@ -7,15 +7,16 @@
 //! |---|---|---|
 //! | [`gaussian_curvature`] | angle defect, integrated and pointwise, boundary geodesic curvature (Gauss-Bonnet exact) | eq. 2.25 |
 //! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_core::operators::cotan_laplacian`] | eq. 2.26 |
-//! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`Method`]: cubic/quadric [fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
+//! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`Method`]: quartic (default), cubic or quadric [jet fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
 //! | [`integral_curvature`] | Gaussian and mean curvature integrated over a k-ring or ball | 2.5 |
 //! | [`shape_index`], [`curvedness`] | Koenderink's shape descriptors from `k1`, `k2` | |
 //!
 //! Every function takes any [`TriMesh`] (non-manifold, degenerate,
 //! disconnected) and returns finite values with a per-vertex
 //! [`VertexStatus`] saying which are estimates; nothing panics or returns
-//! NaN. Curvatures are positive where the surface bends away from its normal
-//! (a sphere with outward normals has `K = H = k1 = k2 = 1 / r^2, 1 / r`).
+//! NaN. Curvatures are positive where the surface bends away from its normal:
+//! a sphere of radius `r` with outward normals has `k1 = k2 = H = 1 / r` and
+//! `K = 1 / r^2`. The `rayon` feature (default) parallelizes every estimator.
 //!
 //! ```
 //! use mesh_curvature::{curvature_tensor, gaussian_curvature, mean_curvature, TensorOptions};
@@ -60,3 +61,8 @@ pub use status::{StatusCounts, VertexStatus};
 pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, Method, TensorOptions};
 
 pub use mesh_core::TriMesh;
+
+/// The code blocks of README.md, run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -57,13 +57,16 @@ pub struct MeanCurvature {
 /// Cost O(V + F): Laplacian assembly, one sparse product with the three
 /// coordinate columns (in parallel over rows with the `rayon` feature).
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
-    let l = cotan_laplacian(mesh);
     let p = mesh.positions();
-    let lx: Vec<DVec3> = par::map(mesh.vertex_count(), |i| {
-        l.outer_view(i).map_or(DVec3::ZERO, |row| row.iter().map(|(j, w)| *w * p[j]).sum())
-    });
-    let area = vertex_areas(mesh, options.area);
-    let normals = vertex_normals(mesh, options.normals);
+    let (lx, (area, normals)) = par::join(
+        || {
+            let l = cotan_laplacian(mesh);
+            par::map(mesh.vertex_count(), |i| {
+                l.outer_view(i).map_or(DVec3::ZERO, |row| row.iter().map(|(j, w)| *w * p[j]).sum::<DVec3>())
+            })
+        },
+        || par::join(|| vertex_areas(mesh, options.area), || vertex_normals(mesh, options.normals)),
+    );
     let mut status = topological_status(mesh);
     let n = mesh.vertex_count();
     let (mut integrated, mut pointwise, mut normal) = (vec![0.0; n], vec![0.0; n], vec![DVec3::ZERO; n]);

@@ -43,3 +43,15 @@ pub(crate) fn map_with<T: Send, S>(
     let mut scratch = init();
     (0..n).map(|i| f(&mut scratch, i)).collect()
 }
+
+/// Runs both closures, in parallel when the `rayon` feature is on.
+#[cfg(feature = "rayon")]
+pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    rayon::join(a, b)
+}
+
+/// Runs both closures, in parallel when the `rayon` feature is on.
+#[cfg(not(feature = "rayon"))]
+pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    (a(), b())
+}
