@@ -1,8 +1,51 @@
-//! Spectral geometry processing on triangle meshes (work in progress).
+//! Spectral geometry processing on triangle meshes (seed section 2.7): the
+//! smallest eigenpairs of the Laplace-Beltrami operator, the manifold
+//! harmonic transform built on them, spectral filtering and compression of
+//! geometry, and the heat kernel signature.
+//!
+//! | module | what it holds | reference |
+//! |---|---|---|
+//! | [`eigen`] | [`eigenpairs`]: the k smallest pairs of `L x = lambda M x` by block Krylov-Schur shift-invert (dense for small pieces), M-orthonormal, with residuals | Stewart 2001; seed 2.7 |
+//! | [`operators`] | the pair `(L, M)` of a mesh: cotangent or intrinsic Delaunay Laplacian, mixed Voronoi or barycentric lumped mass | eq. 2.15; Meyer et al. 2003 |
+//! | [`harmonics`] | [`ManifoldHarmonics`]: basis, forward `Phi^T M f` and inverse transforms of fields and geometry | Vallet and Levy 2008 |
+//! | [`filter`] | [`filter()`]: transfer functions over frequencies (low-pass, band exaggeration) | Vallet and Levy 2008 |
+//! | [`compress`] | [`compress()`], [`compression_curve`]: keep k coefficients, error vs k | Karni and Gotsman 2000 |
+//! | [`hks`] | [`heat_kernel_signature`] | Sun, Ovsjanikov and Guibas 2009 |
+//!
+//! ```
+//! use mesh_core::{operators, shapes};
+//! use mesh_spectral::{eigenpairs, Options};
+//!
+//! // Unit sphere: eigenvalues l (l + 1), each repeated 2 l + 1 times.
+//! let mesh = shapes::icosphere(3)?;
+//! let l = operators::cotan_laplacian(&mesh);
+//! let m = operators::mass_matrix(&mesh, operators::MassKind::MixedVoronoi);
+//! let pairs = eigenpairs(&l, &m, 9, &Options::default())?;
+//! assert!(pairs.values[0].abs() < 1e-9);
+//! assert!(pairs.values[1..4].iter().all(|v| (v - 2.0).abs() < 0.02));
+//! assert!(pairs.values[4..9].iter().all(|v| (v - 6.0).abs() < 0.1));
+//! assert!(pairs.residuals.iter().all(|r| *r < 1e-8));
+//! # Ok::<(), mesh_spectral::SpectralError>(())
+//! ```
+//!
+//! Conventions: `L` is positive semi-definite (`-igl::cotmatrix`), `M`
+//! diagonal; eigenvalues ascend; eigenvectors are M-orthonormal
+//! (`x_i^T M x_j = delta_ij`); frequencies are `sqrt(lambda)`. Nothing a
+//! user can feed in panics: invalid input is a [`SpectralError`].
 #![deny(missing_docs)]
 
+pub mod compress;
 pub mod eigen;
 pub mod error;
+pub mod filter;
+pub mod harmonics;
+pub mod hks;
+pub mod operators;
 
+pub use compress::{compress, compression_curve, CompressionError};
 pub use eigen::{eigenpairs, Eigenpairs, Method, Options, Stats};
 pub use error::{Result, SpectralError};
+pub use filter::{filter, filter_mesh, filter_with, Transfer};
+pub use harmonics::{HarmonicsOptions, ManifoldHarmonics};
+pub use hks::{heat_kernel_signature, hks_times};
+pub use operators::{laplace_beltrami, LaplacianKind, LumpedMass};

@@ -31,7 +31,7 @@ mod krylov;
 mod problem;
 mod random;
 mod shift_invert;
-mod tall;
+pub(crate) mod tall;
 
 use std::f64::consts::PI;
 use std::time::Instant;

@@ -1,0 +1,194 @@
+//! Manifold harmonics (Vallet and Levy 2008, "Spectral geometry processing
+//! with manifold harmonics"): the M-orthonormal eigenvectors `phi_i` of
+//! `L phi = lambda M phi` are the surface analogue of Fourier modes, with
+//! frequency `omega_i = sqrt(lambda_i)`.
+//!
+//! - forward transform (analysis): `c_i = <f, phi_i>_M = sum_v phi_i(v) m_v f(v)`,
+//!   i.e. `c = Phi^T M f`;
+//! - inverse transform (synthesis): `f = sum_i c_i phi_i = Phi c`.
+//!
+//! With all n pairs the two are inverse to each other; with the k smallest,
+//! synthesis after analysis is the M-orthogonal projection onto the k
+//! smoothest modes (the best approximation in the area-weighted L2 norm).
+
+use faer::{Accum, Mat, MatRef};
+use glam::DVec3;
+use mesh_core::TriMesh;
+use sprs::CsMat;
+
+use crate::eigen::{eigenpairs, tall, Eigenpairs, Options};
+use crate::error::{Result, SpectralError};
+use crate::operators::{laplace_beltrami, LaplacianKind, LumpedMass};
+
+/// Options of [`ManifoldHarmonics::new`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HarmonicsOptions {
+    /// Laplacian discretization.
+    pub laplacian: LaplacianKind,
+    /// Lumped mass.
+    pub mass: LumpedMass,
+    /// Eigensolver options.
+    pub eigen: Options,
+}
+
+/// The manifold-harmonic basis of a mesh: `k` eigenpairs and the mass they
+/// are orthonormal for, with the transforms.
+#[derive(Debug, Clone)]
+pub struct ManifoldHarmonics {
+    pairs: Eigenpairs,
+    mass: Vec<f64>,
+}
+
+impl ManifoldHarmonics {
+    /// The `k` smoothest harmonics of `mesh` (see [`crate::eigenpairs`] for
+    /// the cost). Errors: empty mesh, `k` above the number of vertices with
+    /// mass, solver failures.
+    pub fn new(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> Result<Self> {
+        let (l, mass) = laplace_beltrami(mesh, options.laplacian, options.mass)?;
+        let m = mesh_core::operators::mass::diagonal(mass.clone());
+        let pairs = eigenpairs(&l, &m, k, &options.eigen)?;
+        Ok(Self { pairs, mass })
+    }
+
+    /// A basis from eigenpairs computed elsewhere (for instance with
+    /// [`crate::eigenpairs`] on custom matrices) and the diagonal of the mass
+    /// matrix they are orthonormal for.
+    pub fn from_eigenpairs(pairs: Eigenpairs, mass: Vec<f64>) -> Result<Self> {
+        if mass.len() != pairs.vertex_count() {
+            return Err(SpectralError::Dimension(format!(
+                "{} masses for eigenvectors of length {}",
+                mass.len(),
+                pairs.vertex_count()
+            )));
+        }
+        if let Some(bad) = mass.iter().find(|m| !(m.is_finite() && **m >= 0.0)) {
+            return Err(SpectralError::InvalidMatrix { name: "M", reason: format!("mass {bad}") });
+        }
+        Ok(Self { pairs, mass })
+    }
+
+    /// The mass diagonal and the Laplacian of `mesh` for the given options,
+    /// as used by [`ManifoldHarmonics::new`] (to compute pairs yourself).
+    pub fn operators(mesh: &TriMesh, options: &HarmonicsOptions) -> Result<(CsMat<f64>, Vec<f64>)> {
+        laplace_beltrami(mesh, options.laplacian, options.mass)
+    }
+
+    /// Number of harmonics k.
+    pub fn len(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// `true` when there is no harmonic.
+    pub fn is_empty(&self) -> bool {
+        self.pairs.is_empty()
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.mass.len()
+    }
+
+    /// The eigenpairs (values ascending, vectors M-orthonormal).
+    pub fn eigenpairs(&self) -> &Eigenpairs {
+        &self.pairs
+    }
+
+    /// Eigenvalues `lambda_i`, ascending.
+    pub fn eigenvalues(&self) -> &[f64] {
+        &self.pairs.values
+    }
+
+    /// Frequencies `omega_i = sqrt(max(lambda_i, 0))`.
+    pub fn frequencies(&self) -> Vec<f64> {
+        self.pairs.values.iter().map(|l| l.max(0.0).sqrt()).collect()
+    }
+
+    /// Lumped mass of each vertex.
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
+    }
+
+    /// Harmonic `i` as a per-vertex field.
+    ///
+    /// # Panics
+    /// If `i >= self.len()`.
+    pub fn harmonic(&self, i: usize) -> &[f64] {
+        self.pairs.vector(i)
+    }
+
+    /// Forward transform of a scalar field: `c = Phi^T M f` (k values).
+    /// O(n k).
+    pub fn forward(&self, f: &[f64]) -> Result<Vec<f64>> {
+        let c = self.forward_columns(self.field(f)?.as_ref())?;
+        Ok(c.col_as_slice(0).to_vec())
+    }
+
+    /// Inverse transform: `f = sum_i c_i phi_i` for the first
+    /// `coefficients.len() <= k` harmonics. O(n k).
+    pub fn inverse(&self, coefficients: &[f64]) -> Result<Vec<f64>> {
+        let c = MatRef::from_column_major_slice(coefficients, coefficients.len(), 1);
+        let f = self.inverse_columns(c)?;
+        Ok(f.col_as_slice(0).to_vec())
+    }
+
+    /// Forward transform of the geometry (or any vector field): one
+    /// coefficient vector per harmonic, `c_i = sum_v phi_i(v) m_v p_v`.
+    pub fn forward_points(&self, points: &[DVec3]) -> Result<Vec<DVec3>> {
+        let c = self.forward_columns(self.points(points)?.as_ref())?;
+        Ok((0..c.nrows()).map(|i| DVec3::new(c[(i, 0)], c[(i, 1)], c[(i, 2)])).collect())
+    }
+
+    /// Inverse transform of vector coefficients: `p = sum_i c_i phi_i` over
+    /// the first `coefficients.len() <= k` harmonics.
+    pub fn inverse_points(&self, coefficients: &[DVec3]) -> Result<Vec<DVec3>> {
+        let c = Mat::from_fn(coefficients.len(), 3, |i, j| coefficients[i][j]);
+        let p = self.inverse_columns(c.as_ref())?;
+        Ok((0..p.nrows()).map(|v| DVec3::new(p[(v, 0)], p[(v, 1)], p[(v, 2)])).collect())
+    }
+
+    fn field(&self, f: &[f64]) -> Result<Mat<f64>> {
+        self.check_len(f.len())?;
+        if let Some(bad) = f.iter().find(|x| !x.is_finite()) {
+            return Err(SpectralError::InvalidOption { name: "field", reason: format!("non-finite value {bad}") });
+        }
+        Ok(Mat::from_fn(f.len(), 1, |i, _| f[i]))
+    }
+
+    fn points(&self, p: &[DVec3]) -> Result<Mat<f64>> {
+        self.check_len(p.len())?;
+        if let Some(bad) = p.iter().find(|x| !x.is_finite()) {
+            return Err(SpectralError::InvalidOption { name: "points", reason: format!("non-finite point {bad}") });
+        }
+        Ok(Mat::from_fn(p.len(), 3, |i, j| p[i][j]))
+    }
+
+    fn check_len(&self, len: usize) -> Result<()> {
+        if len != self.vertex_count() {
+            return Err(SpectralError::Dimension(format!("{len} values for {} vertices", self.vertex_count())));
+        }
+        Ok(())
+    }
+
+    /// `Phi^T M F` for the columns of `f` (n x c).
+    pub(crate) fn forward_columns(&self, f: MatRef<'_, f64>) -> Result<Mat<f64>> {
+        self.check_len(f.nrows())?;
+        let mf = Mat::from_fn(f.nrows(), f.ncols(), |i, j| self.mass[i] * f[(i, j)]);
+        let mut c = Mat::zeros(self.len(), f.ncols());
+        tall::gram(c.as_mut(), self.pairs.vectors(), mf.as_ref());
+        Ok(c)
+    }
+
+    /// `Phi_[:, ..r] C` for the rows of `c` (r x c, r <= k).
+    pub(crate) fn inverse_columns(&self, c: MatRef<'_, f64>) -> Result<Mat<f64>> {
+        let r = c.nrows();
+        if r > self.len() {
+            return Err(SpectralError::Dimension(format!("{r} coefficients for {} harmonics", self.len())));
+        }
+        if (0..c.ncols()).any(|j| c.col(j).iter().any(|x| !x.is_finite())) {
+            return Err(SpectralError::InvalidOption { name: "coefficients", reason: "non-finite value".into() });
+        }
+        let mut f = Mat::zeros(self.vertex_count(), c.ncols());
+        tall::mul(f.as_mut(), Accum::Replace, self.pairs.vectors().subcols(0, r), c, 1.0);
+        Ok(f)
+    }
+}
