@@ -176,20 +176,27 @@ impl HeatGeodesics {
             return Err(mesh_core::MeshError::Empty.into());
         }
         let n = mesh.vertex_count();
+        let extrinsic = || {
+            let faces = extrinsic_faces(mesh);
+            (faces, operators::cotan_laplacian(mesh), operators::lumped_mass(mesh, MassKind::Barycentric))
+        };
         let (faces, laplacian, mass) = match options.laplacian {
-            HeatLaplacian::Cotan => {
-                let faces = extrinsic_faces(mesh);
-                (faces, operators::cotan_laplacian(mesh), operators::lumped_mass(mesh, MassKind::Barycentric))
-            }
+            HeatLaplacian::Cotan => extrinsic(),
             HeatLaplacian::IntrinsicDelaunay => {
                 let t = IntrinsicTriangulation::delaunay(mesh, &options.intrinsic)?;
-                let faces = t
-                    .faces()
-                    .iter()
-                    .zip(t.lengths().chunks_exact(3))
-                    .map(|(f, l)| FaceGradient::new(*f, [l[0], l[1], l[2]]))
-                    .collect();
-                (faces, t.cotan_laplacian(), t.barycentric_mass())
+                if t.flip_count() == 0 && unchanged_lengths(mesh, t.lengths()) {
+                    // Already Delaunay and not mollified: the same operator,
+                    // assembled faster from the mesh's edges.
+                    extrinsic()
+                } else {
+                    let faces = t
+                        .faces()
+                        .iter()
+                        .zip(t.lengths().chunks_exact(3))
+                        .map(|(f, l)| FaceGradient::new(*f, [l[0], l[1], l[2]]))
+                        .collect();
+                    (faces, t.cotan_laplacian(), t.barycentric_mass())
+                }
             }
         };
         let conn = mesh.connectivity();
@@ -364,6 +371,16 @@ fn extrinsic_faces(mesh: &TriMesh) -> Vec<FaceGradient> {
             FaceGradient::new(vertices, [0, 1, 2].map(|k| tri[k].distance(tri[(k + 1) % 3])))
         })
         .collect()
+}
+
+/// `true` when the intrinsic half-edge lengths are the mesh's own (no
+/// mollification happened).
+fn unchanged_lengths(mesh: &TriMesh, lengths: &[f64]) -> bool {
+    let p = mesh.positions();
+    mesh.faces()
+        .iter()
+        .zip(lengths.chunks_exact(3))
+        .all(|(f, l)| (0..3).all(|k| p[f[k] as usize].distance(p[f[(k + 1) % 3] as usize]) == l[k]))
 }
 
 /// `diag(mass) + t L` with 1 on the diagonal of isolated vertices. Same

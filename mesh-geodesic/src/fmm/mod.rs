@@ -38,7 +38,7 @@ use crate::error::{GeodesicError, Result};
 use crate::support::{validate_length, validate_sources, HeapEntry};
 use local::{advance_curvature, circular_front, mean_radius, plane_wave, Circular};
 pub use stencil::FmmStats;
-use stencil::{angle_defect_curvature, Stencils, EDGE, TRIANGLE};
+use stencil::{Stencils, EDGE, TRIANGLE};
 
 /// The local solver of the Eikonal equation in one triangle.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -114,7 +114,6 @@ impl Default for FmmOptions {
 #[derive(Debug, Clone)]
 pub struct FastMarching {
     stencils: Stencils,
-    curvature: Vec<f64>,
     weights: Option<Vec<f64>>,
     max_distance: f64,
     update: FmmUpdate,
@@ -140,14 +139,10 @@ impl FastMarching {
                 reason: format!("{} is not a non-negative number", options.max_distance),
             });
         }
-        let stencils = Stencils::new(mesh, options.split_obtuse, options.max_unfold);
-        let curvature = match options.update {
-            FmmUpdate::CurvedFront => angle_defect_curvature(mesh),
-            _ => vec![0.0; mesh.vertex_count()],
-        };
+        let curved = options.update == FmmUpdate::CurvedFront;
+        let stencils = Stencils::new(mesh, options.split_obtuse, options.max_unfold, curved);
         Ok(Self {
             stencils,
-            curvature,
             weights: options.weights.clone(),
             max_distance: options.max_distance,
             update: options.update,
@@ -156,7 +151,7 @@ impl FastMarching {
 
     /// Number of vertices of the mesh this was built for.
     pub fn vertex_count(&self) -> usize {
-        self.curvature.len()
+        self.stencils.curvature.len()
     }
 
     /// What the preprocessing found (obtuse, split and degenerate corners).
@@ -305,11 +300,14 @@ impl March {
     ) -> (f64, f64, u32) {
         let x = e.target as usize;
         let p = fmm.weight(x);
-        let k_x = fmm.curvature[x];
+        let k_x = fmm.stencils.curvature[x];
         let mut best = (f64::INFINITY, 0.0, labels[v]);
         if e.flags & EDGE != 0 {
             let len = e.g_self.sqrt();
-            best = (d + p * len, advance_curvature(self.kappa[v], len) - k_x * len, labels[v]);
+            let u = d + p * len;
+            if u < distance[x] {
+                best = (u, advance_curvature(self.kappa[v], len) - k_x * len, labels[v]);
+            }
         }
         let o = e.other as usize;
         if e.flags & TRIANGLE == 0 || self.stamp[o] != self.run {
@@ -343,7 +341,7 @@ impl March {
                 (u, advance_curvature(k_mean, u / p - mean))
             }
         };
-        if u < best.0 {
+        if u < best.0 && u < distance[x] {
             let label = if u_o < d { labels[o] } else { labels[v] };
             best = (u, kappa - k_x * (u / p - mean), label);
         }

@@ -4,7 +4,7 @@
 //! curvature that the curved-front update needs.
 
 use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::{geometry, Connectivity, FaceId, HalfedgeId, TriMesh, VertexId, VertexKind};
+use mesh_core::{Connectivity, FaceId, HalfedgeId, TriMesh, VertexId, VertexKind};
 
 /// Relative tolerance below which a corner counts as degenerate.
 const DEGENERATE: f64 = 1e-12;
@@ -46,29 +46,41 @@ pub(crate) struct Stencils {
     pub offsets: Vec<u32>,
     pub entries: Vec<Entry>,
     pub stats: FmmStats,
+    /// Gaussian curvature per vertex (zeros unless asked for).
+    pub curvature: Vec<f64>,
 }
 
 impl Stencils {
-    /// Builds the stencils of every corner: its own triangle when the angle
-    /// there is at most 90 degrees; when it is obtuse and `split` holds, two
-    /// virtual acute triangles through the vertex found by unfolding (plus
-    /// the triangle's two edges). O(F) plus the unfolding.
-    pub fn new(mesh: &TriMesh, split: bool, max_unfold: usize) -> Self {
+    /// Builds the stencils of every corner: its own triangle, and when the
+    /// angle there is obtuse and `split` holds, two virtual acute triangles
+    /// through the vertex found by unfolding. Two passes over the corners
+    /// (count, then fill in place), O(F) plus the unfolding.
+    pub fn new(mesh: &TriMesh, split: bool, max_unfold: usize, curvature: bool) -> Self {
         let conn = mesh.connectivity();
         let p = mesh.positions();
+        let n = mesh.vertex_count();
         let mut stats = FmmStats::default();
-        let mut keyed = Vec::with_capacity(6 * mesh.face_count());
+        // Angle sums and barycentric areas for the curvature, from the same
+        // Gram matrices.
+        let (mut angle_sum, mut area) = if curvature { (vec![0.0; n], vec![0.0; n]) } else { (Vec::new(), Vec::new()) };
+        // Pass 1: classify corners, unfold the obtuse ones, count entries.
+        let mut offsets = vec![0u32; n + 1];
+        let mut virtual_stencils: Vec<(u32, [u32; 2], [f64; 2], f64)> = Vec::new();
         for f in mesh.face_ids() {
             let tri = mesh.faces()[f.idx()];
             for k in 0..3 {
                 let (x, x1, x2) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                let (e1, e2) = (p[x1 as usize] - p[x as usize], p[x2 as usize] - p[x as usize]);
-                let (g11, g22, g12) = (e1.length_squared(), e2.length_squared(), e1.dot(e2));
+                offsets[x1 as usize + 1] += 1;
+                offsets[x2 as usize + 1] += 1;
+                let [g11, g22, g12] = gram(p, x, x1, x2);
                 let det = g11 * g22 - g12 * g12;
-                let mut flags = EDGE | TRIANGLE;
+                if curvature {
+                    let root = det.max(0.0).sqrt();
+                    angle_sum[x as usize] += root.atan2(g12);
+                    area[x as usize] += root / 6.0;
+                }
                 if !(det > DEGENERATE * g11 * g22) {
                     stats.degenerate_corners += 1;
-                    flags = EDGE;
                 } else if g12 < 0.0 {
                     stats.obtuse_corners += 1;
                     let found = if split { split_obtuse(conn, p, f, k, max_unfold) } else { None };
@@ -77,15 +89,42 @@ impl Stencils {
                         let l1 = g11.sqrt();
                         let (q1, q2) = (DVec2::new(l1, 0.0), DVec2::new(g12 / l1, det.sqrt() / l1));
                         let gc = q.length_squared();
-                        push(&mut keyed, x, [x1, c.0], [g11, gc], q1.dot(q), EDGE | TRIANGLE);
-                        push(&mut keyed, x, [c.0, x2], [gc, g22], q.dot(q2), EDGE | TRIANGLE);
+                        virtual_stencils.push((x, [x1, c.0], [g11, gc], q1.dot(q)));
+                        virtual_stencils.push((x, [c.0, x2], [gc, g22], q.dot(q2)));
+                        for v in [x1, c.0, c.0, x2] {
+                            offsets[v as usize + 1] += 1;
+                        }
                     }
                 }
-                push(&mut keyed, x, [x1, x2], [g11, g22], g12, flags);
             }
         }
-        let (offsets, entries) = bucket_by_vertex(mesh.vertex_count(), keyed);
-        Self { offsets, entries, stats }
+        for v in 0..n {
+            offsets[v + 1] += offsets[v];
+        }
+        // Pass 2: fill each vertex's bucket.
+        let mut fill: Vec<u32> = offsets[..n].to_vec();
+        let blank = Entry { target: 0, other: 0, g_self: 0.0, g_other: 0.0, g_dot: 0.0, flags: 0 };
+        let mut entries = vec![blank; offsets[n] as usize];
+        let mut put = |x: u32, [v1, v2]: [u32; 2], [g1, g2]: [f64; 2], g12: f64, flags: u8| {
+            for (v, other, g_self, g_other) in [(v1, v2, g1, g2), (v2, v1, g2, g1)] {
+                entries[fill[v as usize] as usize] = Entry { target: x, other, g_self, g_other, g_dot: g12, flags };
+                fill[v as usize] += 1;
+            }
+        };
+        for tri in mesh.faces() {
+            for k in 0..3 {
+                let (x, x1, x2) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                let [g11, g22, g12] = gram(p, x, x1, x2);
+                let det = g11 * g22 - g12 * g12;
+                let flags = if det > DEGENERATE * g11 * g22 { EDGE | TRIANGLE } else { EDGE };
+                put(x, [x1, x2], [g11, g22], g12, flags);
+            }
+        }
+        for (x, v, g, g12) in virtual_stencils {
+            put(x, v, g, g12, EDGE | TRIANGLE);
+        }
+        let curvature = if curvature { smoothed_curvature(mesh, &angle_sum, &area) } else { vec![0.0; n] };
+        Self { offsets, entries, stats, curvature }
     }
 
     /// The stencils in which `v` is a known vertex.
@@ -95,29 +134,12 @@ impl Stencils {
     }
 }
 
-/// Registers the stencil (x; v1, v2) under both known vertices.
-fn push(keyed: &mut Vec<(u32, Entry)>, x: u32, [v1, v2]: [u32; 2], [g1, g2]: [f64; 2], g12: f64, flags: u8) {
-    keyed.push((v1, Entry { target: x, other: v2, g_self: g1, g_other: g2, g_dot: g12, flags }));
-    keyed.push((v2, Entry { target: x, other: v1, g_self: g2, g_other: g1, g_dot: g12, flags }));
-}
-
-/// Counting sort of the keyed stencils into per-vertex buckets.
-fn bucket_by_vertex(n: usize, keyed: Vec<(u32, Entry)>) -> (Vec<u32>, Vec<Entry>) {
-    let mut offsets = vec![0u32; n + 1];
-    for (v, _) in &keyed {
-        offsets[*v as usize + 1] += 1;
-    }
-    for v in 0..n {
-        offsets[v + 1] += offsets[v];
-    }
-    let mut fill = offsets.clone();
-    let blank = Entry { target: 0, other: 0, g_self: 0.0, g_other: 0.0, g_dot: 0.0, flags: 0 };
-    let mut entries = vec![blank; keyed.len()];
-    for (v, e) in keyed {
-        entries[fill[v as usize] as usize] = e;
-        fill[v as usize] += 1;
-    }
-    (offsets, entries)
+/// Gram matrix entries |e1|^2, |e2|^2, e1 . e2 of the corner x with edges
+/// e1 = x1 - x, e2 = x2 - x.
+#[inline]
+fn gram(p: &[DVec3], x: u32, x1: u32, x2: u32) -> [f64; 3] {
+    let (e1, e2) = (p[x1 as usize] - p[x as usize], p[x2 as usize] - p[x as usize]);
+    [e1.length_squared(), e2.length_squared(), e1.dot(e2)]
 }
 
 /// Splits the obtuse corner `k` of face `f` (Kimmel and Sethian 1998): lays
@@ -191,36 +213,25 @@ fn unfold(qa: DVec2, qb: DVec2, la: f64, lb: f64, apex: DVec2) -> Option<DVec2> 
     Some(qa + along * u + height * n)
 }
 
-/// Gaussian curvature at each vertex as the angle defect over the
-/// barycentric area (2 pi - sum of corner angles) / (A / 3), the discrete
-/// Gauss-Bonnet estimate; 0 on boundary, non-manifold and isolated vertices
-/// and where the area vanishes. O(F).
-pub(crate) fn angle_defect_curvature(mesh: &TriMesh) -> Vec<f64> {
-    let n = mesh.vertex_count();
-    let mut defect = vec![std::f64::consts::TAU; n];
-    let mut area = vec![0.0; n];
-    for f in mesh.face_ids() {
-        let corners = mesh.triangle(f);
-        let angles = geometry::triangle_angles(corners);
-        let third = geometry::triangle_area(corners) / 3.0;
-        for (k, &v) in mesh.faces()[f.idx()].iter().enumerate() {
-            defect[v as usize] -= angles[k];
-            area[v as usize] += third;
-        }
-    }
-    // Average over each vertex's star (its own and its neighbours' defects
-    // over their areas): a single vertex's defect is noisy.
+/// Gaussian curvature at each vertex from the angle sums and barycentric
+/// areas: the angle defect (2 pi - sum of corner angles) over the area (the
+/// discrete Gauss-Bonnet estimate), averaged over the vertex's star (its own
+/// and its neighbours' defects over their areas) because a single vertex's
+/// defect is noisy; 0 on boundary, non-manifold and isolated vertices. O(V + E).
+fn smoothed_curvature(mesh: &TriMesh, angle_sum: &[f64], area: &[f64]) -> Vec<f64> {
     let conn = mesh.connectivity();
+    let n = mesh.vertex_count();
     let interior: Vec<bool> = (0..n).map(|v| conn.vertex_kind(VertexId::new(v)) == VertexKind::Interior).collect();
+    let defect = |v: usize| std::f64::consts::TAU - angle_sum[v];
     (0..n)
         .map(|v| {
             if !interior[v] {
                 return 0.0;
             }
-            let (mut sum_defect, mut sum_area) = (defect[v], area[v]);
+            let (mut sum_defect, mut sum_area) = (defect(v), area[v]);
             crate::support::for_each_neighbor(conn, VertexId::new(v), |w| {
                 if interior[w.idx()] {
-                    sum_defect += defect[w.idx()];
+                    sum_defect += defect(w.idx());
                     sum_area += area[w.idx()];
                 }
             });
@@ -246,7 +257,7 @@ mod tests {
         let (c, q) = split_obtuse(mesh.connectivity(), mesh.positions(), FaceId(0), 0, 20).unwrap();
         assert_eq!(c, VertexId(3));
         assert!((q.length() - 2.0).abs() < 1e-12);
-        let s = Stencils::new(&mesh, true, 20);
+        let s = Stencils::new(&mesh, true, 20, false);
         assert_eq!(s.stats, FmmStats { obtuse_corners: 2, split_corners: 2, degenerate_corners: 0 });
     }
 
@@ -281,10 +292,11 @@ mod tests {
     #[test]
     fn curvature_of_a_sphere_is_one() {
         let m = mesh_core::shapes::icosphere(4).unwrap();
-        let k = angle_defect_curvature(&m);
+        let k = Stencils::new(&m, true, 20, true).curvature;
         let mean = k.iter().sum::<f64>() / k.len() as f64;
         assert!((mean - 1.0).abs() < 0.02, "{mean}");
-        let flat = angle_defect_curvature(&mesh_core::shapes::disk(5, 1).unwrap());
+        assert!(k.iter().all(|k| (k - 1.0).abs() < 0.1));
+        let flat = Stencils::new(&mesh_core::shapes::disk(5, 1).unwrap(), true, 20, true).curvature;
         assert!(flat.iter().all(|k| k.abs() < 1e-9));
     }
 }
