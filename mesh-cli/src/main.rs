@@ -37,6 +37,8 @@ enum Command {
     Curvature(commands::curvature::Args),
     /// Flattens a mesh onto the plane (Tutte, mean-value, harmonic, authalic, intrinsic, LSCM, ARAP), to an OBJ with UVs.
     Param(commands::param::Args),
+    /// Geodesic distance from source vertices (heat, fmm, dijkstra), to a PLY file; optional path to an OBJ polyline.
+    Geodesic(commands::geodesic::Args),
 }
 
 fn main() {
@@ -50,6 +52,7 @@ fn main() {
         Command::Report(args) => commands::report::run(args),
         Command::Curvature(args) => commands::curvature::run(args),
         Command::Param(args) => commands::param::run(args),
+        Command::Geodesic(args) => commands::geodesic::run(args),
     };
     if let Err(e) = result {
         eprintln!("mesh: error: {e}");

@@ -4,6 +4,7 @@ pub mod clean;
 pub mod convert;
 pub mod curvature;
 pub mod generate;
+pub mod geodesic;
 pub mod info;
 pub mod param;
 pub mod render;

@@ -11,6 +11,7 @@
 
 mod core;
 mod curvature;
+mod geodesic;
 mod param;
 
 use std::path::PathBuf;
@@ -39,7 +40,7 @@ impl<'a> Operation<'a> {
 /// Every group of operations: a function from the mesh file and its content
 /// to the operations.
 type Group = for<'a> fn(&'a std::path::Path, &'a MeshData) -> Vec<Operation<'a>>;
-const GROUPS: &[Group] = &[core::operations, curvature::operations, param::operations];
+const GROUPS: &[Group] = &[core::operations, curvature::operations, geodesic::operations, param::operations];
 
 /// Arguments of `cargo xtask bench`.
 #[derive(Debug, clap::Args)]

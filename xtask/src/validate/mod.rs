@@ -6,6 +6,7 @@
 
 mod core;
 mod curvature;
+mod geodesic;
 mod param;
 
 use std::path::{Path, PathBuf};
@@ -18,7 +19,7 @@ use crate::Result;
 type Group = (&'static str, fn(&mut Validator));
 
 /// Every group of checks, in the order they run.
-const GROUPS: &[Group] = &[("core", core::run), ("curvature", curvature::run), ("param", param::run)];
+const GROUPS: &[Group] = &[("core", core::run), ("curvature", curvature::run), ("geodesic", geodesic::run), ("param", param::run)];
 
 /// Arguments of `cargo xtask validate`.
 #[derive(Debug, clap::Args)]

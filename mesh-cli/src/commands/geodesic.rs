@@ -1,0 +1,378 @@
+//! `mesh geodesic`: geodesic distance from source vertices (seed section
+//! 2.6) by the heat method, Fast Marching (eq. 2.32-2.34) or Dijkstra on
+//! the edges, written as binary PLY with a per-vertex double `distance`
+//! (+infinity where no source is reachable), and optionally the path from a
+//! vertex back to the sources along -grad U (eq. 2.35) as an OBJ polyline.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use mesh_core::VertexId;
+use mesh_geodesic::{
+    dijkstra, trace_path, DijkstraOptions, FastMarching, FmmOptions, FmmUpdate, HeatGeodesics, HeatLaplacian,
+    HeatOptions, SurfacePoint, TraceOptions,
+};
+use mesh_io::MeshView;
+use serde::Serialize;
+
+use crate::input::InputArgs;
+use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+
+/// Arguments of `mesh geodesic`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    input: InputArgs,
+    /// Source vertices, comma separated (e.g. 0,17,42).
+    #[arg(long, value_name = "V[,V...]", value_delimiter = ',', required = true)]
+    source: Vec<u32>,
+    /// heat, fmm, dijkstra or exact (exact polyhedral geodesics are not
+    /// implemented yet and fail with a message).
+    #[arg(long, default_value = "heat")]
+    method: String,
+    /// Output PLY file: positions as double, per-vertex double `distance`.
+    #[arg(long, value_name = "OUT.ply")]
+    out: PathBuf,
+    /// Trace the path from this vertex back to the nearest source.
+    #[arg(long, value_name = "V", requires = "path_out")]
+    path_from: Option<u32>,
+    /// Where to write the traced path (OBJ polyline).
+    #[arg(long, value_name = "PATH.obj", requires = "path_from")]
+    path_out: Option<PathBuf>,
+    /// Heat method: time step t = m h^2 (h the mean edge length).
+    #[arg(long, value_name = "M", default_value_t = 1.0)]
+    time_factor: f64,
+    /// Heat method: Laplacian of the intrinsic Delaunay triangulation
+    /// (intrinsic, robust on bad triangles) or of the mesh (cotan).
+    #[arg(long, default_value = "intrinsic")]
+    laplacian: String,
+    /// Fast Marching local update: curved (default), point-source or
+    /// plane-wave (eq. 2.34).
+    #[arg(long, default_value = "curved")]
+    fmm_update: String,
+    /// Print a JSON summary instead of text.
+    #[arg(long)]
+    json: bool,
+    /// Allow writing over the input file.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Everything `mesh geodesic --json` prints.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// The input (file or shape).
+    pub input: String,
+    /// The written PLY file.
+    pub output: String,
+    /// Number of vertices.
+    pub vertices: usize,
+    /// The method.
+    pub method: String,
+    /// The sources.
+    pub sources: Vec<u32>,
+    /// Largest finite distance (`null` when only sources are reached).
+    pub max_distance: Option<f64>,
+    /// Vertices reached (finite distance).
+    pub reached: usize,
+    /// Vertices no source reaches (+infinity).
+    pub unreachable: usize,
+    /// The traced path, if asked for.
+    pub path: Option<PathSummary>,
+    /// Wall times in milliseconds.
+    pub timings_ms: Timings,
+}
+
+/// The traced path.
+#[derive(Debug, Clone, Serialize)]
+pub struct PathSummary {
+    /// Start vertex.
+    pub from: u32,
+    /// Source reached.
+    pub to: u32,
+    /// Length of the polyline.
+    pub length: f64,
+    /// Distance at the start according to the field.
+    pub field_distance: Option<f64>,
+    /// Number of points.
+    pub points: usize,
+    /// Segments that had to follow edges (no descent).
+    pub fallback_edges: usize,
+    /// The written OBJ file.
+    pub output: String,
+}
+
+/// Wall times in milliseconds.
+#[derive(Debug, Clone, Serialize)]
+pub struct Timings {
+    /// Preprocessing (factorization, stencils); 0 for Dijkstra.
+    pub precompute: f64,
+    /// The distance query itself.
+    pub solve: f64,
+    /// Path tracing.
+    pub trace: Option<f64>,
+}
+
+fn ms(start: Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1e3
+}
+
+/// The distance field and the (precompute, solve) times.
+fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> CliResult<(Vec<f64>, f64, f64)> {
+    match args.method.as_str() {
+        "heat" => {
+            let laplacian = match args.laplacian.as_str() {
+                "intrinsic" => HeatLaplacian::IntrinsicDelaunay,
+                "cotan" => HeatLaplacian::Cotan,
+                other => return Err(format!("unknown --laplacian `{other}`; known: intrinsic, cotan").into()),
+            };
+            let opts = HeatOptions { time_factor: args.time_factor, laplacian, ..Default::default() };
+            let start = Instant::now();
+            let heat = HeatGeodesics::new(mesh, &opts)?;
+            let pre = ms(start);
+            let start = Instant::now();
+            let d = heat.distance(sources)?;
+            Ok((d, pre, ms(start)))
+        }
+        "fmm" => {
+            let update = match args.fmm_update.as_str() {
+                "curved" => FmmUpdate::CurvedFront,
+                "point-source" => FmmUpdate::PointSource,
+                "plane-wave" => FmmUpdate::PlaneWave,
+                other => {
+                    return Err(
+                        format!("unknown --fmm-update `{other}`; known: curved, point-source, plane-wave").into()
+                    )
+                }
+            };
+            let start = Instant::now();
+            let fmm = FastMarching::new(mesh, &FmmOptions { update, ..Default::default() })?;
+            let pre = ms(start);
+            let start = Instant::now();
+            let d = fmm.distance(sources)?;
+            Ok((d, pre, ms(start)))
+        }
+        "dijkstra" => {
+            let start = Instant::now();
+            let d = dijkstra(mesh, sources, &DijkstraOptions::default())?.distance;
+            Ok((d, 0.0, ms(start)))
+        }
+        "exact" => Err("--method exact: exact polyhedral geodesics (MMP/VTP) are not implemented yet; \
+                        use fmm (closest to exact) or heat"
+            .into()),
+        other => Err(format!("unknown --method `{other}`; known: heat, fmm, dijkstra, exact").into()),
+    }
+}
+
+/// Runs `mesh geodesic`.
+pub fn run(args: &Args) -> CliResult<()> {
+    check_not_input(&args.out, args.input.path(), args.force)?;
+    if let Some(p) = &args.path_out {
+        check_not_input(p, args.input.path(), args.force)?;
+    }
+    let data = args.input.load()?;
+    let mesh = &data.mesh;
+    let n = mesh.vertex_count();
+    let sources: Vec<VertexId> = args.source.iter().map(|&s| VertexId(s)).collect();
+    if let Some(&bad) = args.source.iter().find(|&&s| s as usize >= n) {
+        return Err(format!("--source {bad} is not a vertex (the mesh has {n})").into());
+    }
+    let (d, precompute, solve) = distance(args, mesh, &sources)?;
+
+    ensure_parent(&args.out)?;
+    let write = mesh_io::WriteOptions {
+        format: Some(mesh_io::Format::Ply),
+        ply: mesh_io::PlyOptions { encoding: mesh_io::PlyEncoding::BinaryLittleEndian, double: true },
+        ..Default::default()
+    };
+    mesh_io::write(&args.out, MeshView::new(mesh).with_scalar("distance", &d), &write)?;
+
+    let (path, trace_ms) = match (args.path_from, &args.path_out) {
+        (Some(from), Some(out)) => {
+            let start_point = SurfacePoint::at_vertex(mesh, VertexId(from))
+                .ok_or_else(|| format!("--path-from {from} is not a vertex of any face"))?;
+            let start = Instant::now();
+            let path = trace_path(mesh, &d, &sources, start_point, &TraceOptions::default())?;
+            let t = ms(start);
+            ensure_parent(out)?;
+            mesh_io::write_polylines(out, &[&path.positions])?;
+            let summary = PathSummary {
+                from,
+                to: path.source.0,
+                length: path.length,
+                field_distance: finite(d[from as usize]),
+                points: path.points.len(),
+                fallback_edges: path.fallback_edges,
+                output: out.display().to_string(),
+            };
+            (Some(summary), Some(t))
+        }
+        _ => (None, None),
+    };
+
+    let reached = d.iter().filter(|x| x.is_finite()).count();
+    let max = d.iter().copied().filter(|x| x.is_finite()).fold(0.0f64, f64::max);
+    let summary = Summary {
+        input: args.input.describe(),
+        output: args.out.display().to_string(),
+        vertices: n,
+        method: args.method.clone(),
+        sources: args.source.clone(),
+        max_distance: (reached > 0).then_some(max),
+        reached,
+        unreachable: n - reached,
+        path,
+        timings_ms: Timings { precompute, solve, trace: trace_ms },
+    };
+    if args.json {
+        return print_json(&summary);
+    }
+    print_text(&summary);
+    Ok(())
+}
+
+fn print_text(s: &Summary) {
+    println!("mesh: {} ({} vertices)", s.input, s.vertices);
+    println!("  method             {} from {:?}", s.method, s.sources);
+    match s.max_distance {
+        Some(m) => println!("  max distance       {m:.6}"),
+        None => println!("  max distance       n/a"),
+    }
+    println!("  reached            {} vertices, {} unreachable (+inf)", s.reached, s.unreachable);
+    if let Some(p) = &s.path {
+        println!(
+            "  path               v{} -> v{}: length {:.6} (field {}), {} points, {} edge fallback segments",
+            p.from,
+            p.to,
+            p.length,
+            p.field_distance.map_or("n/a".to_owned(), |d| format!("{d:.6}")),
+            p.points,
+            p.fallback_edges
+        );
+        println!("  wrote              {}", p.output);
+    }
+    let t = &s.timings_ms;
+    print!("  time (ms)          precompute {:.2}, solve {:.2}", t.precompute, t.solve);
+    match t.trace {
+        Some(tr) => println!(", trace {tr:.2}"),
+        None => println!(),
+    }
+    println!("  wrote              {}", s.output);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(extra: &[&str]) -> Args {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Cli {
+            #[command(flatten)]
+            args: Args,
+        }
+        Cli::parse_from(std::iter::once("geodesic").chain(extra.iter().copied())).args
+    }
+
+    #[test]
+    fn every_method_on_the_sphere() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("d.ply");
+        let path = dir.path().join("p.obj");
+        let (out, path) = (out.to_str().unwrap(), path.to_str().unwrap());
+        for method in ["heat", "fmm", "dijkstra"] {
+            let a = args(&[
+                "--shape",
+                "icosphere",
+                "--res",
+                "3",
+                "--source",
+                "0",
+                "--method",
+                method,
+                "--out",
+                out,
+                "--path-from",
+                "300",
+                "--path-out",
+                path,
+                "--json",
+            ]);
+            run(&a).unwrap_or_else(|e| panic!("{method}: {e}"));
+            let data = mesh_io::read(out).unwrap();
+            let d = data.scalar("distance").unwrap();
+            let p0 = data.mesh.positions()[0];
+            for (p, x) in data.mesh.positions().iter().zip(d) {
+                let truth = p.dot(p0).clamp(-1.0, 1.0).acos();
+                let tolerance = if method == "dijkstra" { 0.25 } else { 0.06 };
+                assert!((x - truth).abs() < tolerance, "{method}: {x} vs {truth}");
+            }
+            let text = std::fs::read_to_string(path).unwrap();
+            assert!(text.lines().any(|l| l.starts_with("l ")), "{method}: no polyline");
+        }
+    }
+
+    #[test]
+    fn several_sources_and_unreachable_vertices() {
+        let dir = tempfile::tempdir().unwrap();
+        let input = dir.path().join("two.off");
+        // Two separate triangles: the second is unreachable.
+        std::fs::write(&input, "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n").unwrap();
+        let out = dir.path().join("d.ply");
+        for method in ["heat", "fmm", "dijkstra"] {
+            let a =
+                args(&[input.to_str().unwrap(), "--source", "0,1", "--method", method, "--out", out.to_str().unwrap()]);
+            run(&a).unwrap();
+            let d = mesh_io::read(&out).unwrap().scalar("distance").unwrap().to_vec();
+            assert_eq!((d[0], d[1]), (0.0, 0.0));
+            assert!(d[2].is_finite() && d[3..].iter().all(|x| *x == f64::INFINITY), "{method}: {d:?}");
+        }
+    }
+
+    #[test]
+    fn bad_arguments_are_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("d.ply");
+        let out = out.to_str().unwrap();
+        for bad in [
+            &["--source", "0", "--method", "exact"][..],
+            &["--source", "0", "--method", "magic"],
+            &["--source", "99999"],
+            &["--source", "0", "--laplacian", "nope"],
+            &["--source", "0", "--method", "fmm", "--fmm-update", "nope"],
+            &["--source", "0", "--time-factor=-1"],
+        ] {
+            let mut v = vec!["--shape", "icosphere", "--res", "1", "--out", out];
+            v.extend_from_slice(bad);
+            assert!(run(&args(&v)).is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn shared_meshes_give_finite_distances() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
+        if !dir.is_dir() {
+            eprintln!("skipping: {} is absent", dir.display());
+            return;
+        }
+        let tmp = tempfile::tempdir().unwrap();
+        for file in ["cgal_degtri_sliding.off", "cgal_holes.off", "npm_bunny.obj"] {
+            let out = tmp.path().join(format!("{file}.ply"));
+            let input = dir.join(file);
+            for method in ["heat", "fmm"] {
+                let a = args(&[
+                    input.to_str().unwrap(),
+                    "--source",
+                    "0",
+                    "--method",
+                    method,
+                    "--out",
+                    out.to_str().unwrap(),
+                ]);
+                run(&a).unwrap_or_else(|e| panic!("{file} {method}: {e}"));
+                let d = mesh_io::read(&out).unwrap().scalar("distance").unwrap().to_vec();
+                assert!(d.iter().all(|x| x.is_finite()), "{file} {method}");
+            }
+        }
+    }
+}

@@ -1,0 +1,33 @@
+//! mesh-geodesic operations from vertex 0, named as in peer_bench.py where
+//! they match (`dijkstra`; `heat_precompute` / `heat_solve` next to the
+//! `_igl` and `_pp3d` figures).
+
+use std::path::Path;
+
+use mesh_core::VertexId;
+use mesh_geodesic::{dijkstra, DijkstraOptions, FastMarching, FmmOptions, HeatGeodesics, HeatOptions};
+use mesh_io::MeshData;
+
+use super::Operation;
+
+/// The geodesic operations on the (connectivity-cached) mesh.
+pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> {
+    let mesh = &data.mesh;
+    let _ = mesh.connectivity();
+    let source = [VertexId(0)];
+    let heat = HeatGeodesics::new(mesh, &HeatOptions::default());
+    let fmm = FastMarching::new(mesh, &FmmOptions::default());
+    vec![
+        Operation::new("dijkstra", move || Ok(dijkstra(mesh, &source, &DijkstraOptions::default())?)),
+        Operation::new("fmm", move || Ok(FastMarching::new(mesh, &FmmOptions::default())?.distance(&source)?)),
+        Operation::new("fmm_march", move || match &fmm {
+            Ok(f) => Ok(f.distance(&source)?),
+            Err(e) => Err(e.clone().into()),
+        }),
+        Operation::new("heat_precompute", move || Ok(HeatGeodesics::new(mesh, &HeatOptions::default())?)),
+        Operation::new("heat_solve", move || match &heat {
+            Ok(h) => Ok(h.distance(&source)?),
+            Err(e) => Err(e.clone().into()),
+        }),
+    ]
+}
