@@ -41,7 +41,26 @@ enum Command {
     Geodesic(commands::geodesic::Args),
 }
 
+/// Exits quietly when standard output is closed early (`mesh info | head`):
+/// `println!` panics on a broken pipe, which here is not an error.
+fn exit_quietly_on_broken_pipe() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default_hook(info);
+    }));
+}
+
 fn main() {
+    exit_quietly_on_broken_pipe();
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Info(args) => commands::info::run(args),

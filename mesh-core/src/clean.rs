@@ -91,13 +91,14 @@ pub fn weld_vertices(
     let n = positions.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     if tolerance == 0.0 {
+        // Sort (bit pattern, index) pairs computed once; -0.0 and 0.0 weld.
         let key = |p: DVec3| [p.x, p.y, p.z].map(|c| if c == 0.0 { 0u64 } else { c.to_bits() });
-        let mut order: Vec<u32> = (0..n as u32).collect();
-        order.sort_unstable_by_key(|&i| (key(positions[i as usize]), i));
-        for w in order.windows(2) {
-            if key(positions[w[0] as usize]) == key(positions[w[1] as usize]) {
-                let root = parent[w[0] as usize];
-                parent[w[1] as usize] = root;
+        let mut keyed: Vec<([u64; 3], u32)> = positions.iter().enumerate().map(|(i, &p)| (key(p), i as u32)).collect();
+        keyed.sort_unstable();
+        for w in keyed.windows(2) {
+            if w[0].0 == w[1].0 {
+                let root = parent[w[0].1 as usize];
+                parent[w[1].1 as usize] = root;
             }
         }
     } else {

@@ -68,37 +68,52 @@ pub enum NormalWeighting {
     Area,
     /// Weighted by the corner angle at the vertex (Thurmer and Wuthrich 1998).
     Angle,
+    /// Max 1999 ("Weights for computing vertex normals from facet normals"):
+    /// each face adds `(e1 x e2) / (|e1|^2 |e2|^2)`, `e1`, `e2` its edges at
+    /// the vertex. Exact when the vertex and its 1-ring lie on a sphere; the
+    /// normals of Rusinkiewicz's 2004 curvature estimator. Falls back to the
+    /// area weighting where the sum vanishes (zero-length edges).
+    Max,
 }
 
 /// Unit vertex normals: the normalized weighted sum of incident face normals.
-/// Isolated vertices, and vertices whose weighted sum vanishes, get zero.
+/// Isolated vertices, and vertices whose weighted sum vanishes, get zero
+/// (the Max weighting first falls back to the area weighting). O(F).
 pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> {
     let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
+    let mut area_sum = vec![DVec3::ZERO; if weighting == NormalWeighting::Max { mesh.vertex_count() } else { 0 }];
     for (f, tri) in mesh.faces().iter().enumerate() {
         let corners = mesh.triangle(FaceId::new(f));
         let area2 = double_area_vector(corners);
-        match weighting {
-            NormalWeighting::Area => {
-                for &v in tri {
-                    normals[v as usize] += area2;
-                }
+        let unit = area2.normalize_or_zero();
+        let weights: [DVec3; 3] = match weighting {
+            NormalWeighting::Area => [area2; 3],
+            NormalWeighting::Uniform => [unit; 3],
+            NormalWeighting::Angle => triangle_angles(corners).map(|angle| angle * unit),
+            NormalWeighting::Max => {
+                let [a, b, c] = corners;
+                let len2 = [(b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared()];
+                // Corner k lies between edge k (to the next corner) and edge k + 2.
+                [0, 1, 2].map(|k| {
+                    area_sum[tri[k] as usize] += area2;
+                    let w = len2[k] * len2[(k + 2) % 3];
+                    if w > 0.0 {
+                        area2 / w
+                    } else {
+                        DVec3::ZERO
+                    }
+                })
             }
-            NormalWeighting::Uniform => {
-                let n = area2.normalize_or_zero();
-                for &v in tri {
-                    normals[v as usize] += n;
-                }
-            }
-            NormalWeighting::Angle => {
-                let n = area2.normalize_or_zero();
-                for (k, angle) in triangle_angles(corners).into_iter().enumerate() {
-                    normals[tri[k] as usize] += angle * n;
-                }
-            }
+        };
+        for k in 0..3 {
+            normals[tri[k] as usize] += weights[k];
         }
     }
-    for n in &mut normals {
-        *n = n.normalize_or_zero();
+    for (v, n) in normals.iter_mut().enumerate() {
+        *n = match n.try_normalize() {
+            Some(unit) => unit,
+            None => area_sum.get(v).map_or(DVec3::ZERO, |a| a.normalize_or_zero()),
+        };
     }
     normals
 }
@@ -232,12 +247,20 @@ mod tests {
     #[test]
     fn sphere_normals_point_outward() {
         let m = shapes::icosphere(3).unwrap();
-        for w in [NormalWeighting::Uniform, NormalWeighting::Area, NormalWeighting::Angle] {
+        for w in [NormalWeighting::Uniform, NormalWeighting::Area, NormalWeighting::Angle, NormalWeighting::Max] {
             let n = vertex_normals(&m, w);
             for (p, n) in m.positions().iter().zip(&n) {
                 assert!((n.length() - 1.0).abs() < 1e-12);
                 assert!(n.dot(*p) > 0.999);
             }
+        }
+    }
+
+    #[test]
+    fn max_normals_are_exact_on_a_sphere() {
+        let m = shapes::uv_sphere(2.0, 24, 12).unwrap();
+        for (n, p) in vertex_normals(&m, NormalWeighting::Max).iter().zip(m.positions()) {
+            assert!((*n - *p / 2.0).length() < 1e-12);
         }
     }
 

@@ -5,7 +5,7 @@
 //! from facet normals") weights each incident face by the cross product of
 //! its two edges at the vertex divided by both squared edge lengths. It is
 //! exact whenever the vertex and its 1-ring lie on a sphere, and is what
-//! Rusinkiewicz 2004 uses. The other weightings come from
+//! Rusinkiewicz 2004 uses. All weightings come from
 //! [`mesh_core::geometry::vertex_normals`].
 
 use glam::DVec3;
@@ -33,44 +33,12 @@ pub enum Normals {
 /// at all get the zero vector. O(F).
 pub fn vertex_normals(mesh: &TriMesh, normals: Normals) -> Vec<DVec3> {
     let weighting = match normals {
-        Normals::Max => return max_normals(mesh),
+        Normals::Max => NormalWeighting::Max,
         Normals::Area => NormalWeighting::Area,
         Normals::Angle => NormalWeighting::Angle,
         Normals::Uniform => NormalWeighting::Uniform,
     };
     core_normals(mesh, weighting)
-}
-
-/// Max 1999 normals, with the area-weighted fallback.
-fn max_normals(mesh: &TriMesh) -> Vec<DVec3> {
-    let p = mesh.positions();
-    let mut sum = vec![DVec3::ZERO; mesh.vertex_count()];
-    let mut fallback = vec![DVec3::ZERO; mesh.vertex_count()];
-    for tri in mesh.faces() {
-        let [a, b, c] = tri.map(|v| p[v as usize]);
-        let n2 = (b - a).cross(c - a);
-        let len2 = [(b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared()];
-        // Corner k lies between edge k (to the next corner) and edge k + 2.
-        for k in 0..3 {
-            let w = len2[k] * len2[(k + 2) % 3];
-            let v = tri[k] as usize;
-            if w > 0.0 {
-                sum[v] += n2 / w;
-            }
-            fallback[v] += n2;
-        }
-    }
-    sum.iter()
-        .zip(&fallback)
-        .map(|(s, f)| {
-            let n = s.normalize_or_zero();
-            if n == DVec3::ZERO || !n.is_finite() {
-                f.normalize_or_zero()
-            } else {
-                n
-            }
-        })
-        .collect()
 }
 
 #[cfg(test)]

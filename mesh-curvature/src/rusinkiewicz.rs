@@ -5,12 +5,12 @@
 use glam::DVec3;
 use mesh_core::TriMesh;
 
-use crate::area::mixed_voronoi_corners;
 use crate::frame::{rotate_between, solve_spd, Sym2};
 use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
+use mesh_core::operators::mixed_voronoi_corners;
 
 /// The tensor of one face in its own frame, and the weight of each corner.
 #[derive(Debug, Clone, Copy)]

@@ -3,7 +3,6 @@
 
 use sprs::CsMat;
 
-use super::laplacian::triangle_cotans;
 use super::pattern::EdgePattern;
 use crate::geometry::triangle_area;
 use crate::mesh::TriMesh;
@@ -32,10 +31,9 @@ pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
     for f in mesh.face_ids() {
         let tri = mesh.triangle(f);
         let corners = mesh.faces()[f.idx()];
-        let area = triangle_area(tri);
         let share = match kind {
-            MassKind::Barycentric | MassKind::Galerkin => [area / 3.0; 3],
-            MassKind::MixedVoronoi => mixed_voronoi_shares(tri, area),
+            MassKind::Barycentric | MassKind::Galerkin => [triangle_area(tri) / 3.0; 3],
+            MassKind::MixedVoronoi => mixed_voronoi_corners(tri),
         };
         for k in 0..3 {
             m[corners[k] as usize] += share[k];
@@ -44,24 +42,34 @@ pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
     m
 }
 
-/// The parts of one triangle's area given to its corners by the mixed
-/// Voronoi rule (Meyer et al. 2003, figure 4).
-fn mixed_voronoi_shares(tri: [glam::DVec3; 3], area: f64) -> [f64; 3] {
+/// The part of a triangle's area given to each corner by the mixed Voronoi
+/// rule (Meyer, Desbrun, Schroeder and Barr 2003, figure 4): the Voronoi
+/// region when no angle is obtuse, otherwise half of the area at the obtuse
+/// corner and a quarter at the others. Shares sum to the triangle's area;
+/// zero-area triangles give zeros. Per-corner weights of curvature estimators
+/// (Rusinkiewicz 2004) use it directly.
+pub fn mixed_voronoi_corners(tri: [glam::DVec3; 3]) -> [f64; 3] {
+    let area = triangle_area(tri);
+    if area <= 0.0 || !area.is_finite() {
+        return [0.0; 3];
+    }
     let [a, b, c] = tri;
-    let (ab, bc, ca) = ((b - a).dot(c - a), (c - b).dot(a - b), (a - c).dot(b - c));
+    let (da, db, dc) = ((b - a).dot(c - a), (c - b).dot(a - b), (a - c).dot(b - c));
     // A corner is obtuse when the dot product of its two edges is negative.
-    if ab < 0.0 {
+    if da < 0.0 {
         return [area / 2.0, area / 4.0, area / 4.0];
     }
-    if bc < 0.0 {
+    if db < 0.0 {
         return [area / 4.0, area / 2.0, area / 4.0];
     }
-    if ca < 0.0 {
+    if dc < 0.0 {
         return [area / 4.0, area / 4.0, area / 2.0];
     }
-    let [cot_a, cot_b, cot_c] = triangle_cotans(tri);
+    // cot at a corner = dot / (2 area); the Voronoi area at a is
+    // (|ab|^2 cot C + |ac|^2 cot B) / 8.
+    let inv = 1.0 / (2.0 * area);
+    let (cot_a, cot_b, cot_c) = (da * inv, db * inv, dc * inv);
     let (l_ab, l_bc, l_ca) = ((b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared());
-    // Voronoi area at a: (|ab|^2 cot C + |ac|^2 cot B) / 8.
     [(l_ab * cot_c + l_ca * cot_b) / 8.0, (l_bc * cot_a + l_ab * cot_c) / 8.0, (l_ca * cot_b + l_bc * cot_a) / 8.0]
 }
 
@@ -114,7 +122,7 @@ mod tests {
         let h = 3f64.sqrt() / 2.0;
         let tri = [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::new(0.5, h, 0.0)];
         let area = triangle_area(tri);
-        for s in mixed_voronoi_shares(tri, area) {
+        for s in mixed_voronoi_corners(tri) {
             assert!((s - area / 3.0).abs() < 1e-15);
         }
     }

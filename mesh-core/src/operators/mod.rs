@@ -17,7 +17,7 @@ mod pattern;
 
 pub use intrinsic::{IntrinsicOptions, IntrinsicTriangulation};
 pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans};
-pub use mass::{lumped_mass, mass_matrix, MassKind};
+pub use mass::{lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};
 pub use pattern::EdgePattern;
 
 use sprs::CsMat;
