@@ -6,9 +6,10 @@
 //! This is what `mesh_core::solver::DirichletSolver` does, minus its
 //! triplet round trip (a third of the time of a harmonic map on 8k
 //! vertices), with several right-hand sides per call, and with the
-//! supernodal Cholesky forced from 6000 unknowns on: faer's
-//! automatic choice keeps the simplicial one for 2D meshes up to ~50k
-//! vertices, where the supernodal one factors 1.5x faster.
+//! supernodal Cholesky forced from 2000 unknowns on: faer's automatic choice
+//! keeps the simplicial one for 2D meshes up to ~50k vertices, where the
+//! supernodal one factors up to 1.7x faster (measured crossover 2.5k-3.5k
+//! unknowns on jittered disks, below 2.3k on cgal_mushroom).
 
 use std::sync::Arc;
 
@@ -26,7 +27,7 @@ use mesh_core::MeshError;
 use crate::error::{ParamError, Result};
 
 /// Unknowns from which the supernodal Cholesky is forced.
-const SUPERNODAL_FROM: usize = 6000;
+const SUPERNODAL_FROM: usize = 2000;
 
 /// Unknowns below which the factorization runs on one thread: on the 2-core
 /// machines measured, threads made 8k-unknown factorizations 1.5x slower.

@@ -6,9 +6,9 @@
 //! | [`weights`] | one trait, five weight sets: Tutte, mean-value, harmonic, authalic, intrinsic | eq. 2.12-2.16 |
 //! | [`fixed`] | the one fixed-boundary solver for `sum_j w_ij (q_i - q_j) = 0` | eq. 2.13 |
 //! | [`boundary`] | circle (uniform / chord length), square, user-given boundary maps | |
-//! | [`lscm`] | least-squares conformal maps, free boundary | Levy et al. 2002 |
+//! | [`mod@lscm`] | least-squares conformal maps, free boundary | Levy et al. 2002 |
 //! | [`arap`] | as-rigid-as-possible local/global refinement | Liu et al. 2008 |
-//! | [`distortion`] | Jacobian B = P A, singular values, angle / area distortion, Dirichlet energy vs area, torsion, scaling | eq. 2.8-2.11 |
+//! | [`mod@distortion`] | Jacobian B = P A, singular values, angle / area distortion, Dirichlet energy vs area, torsion, scaling | eq. 2.8-2.11 |
 //! | [`bijectivity`] | boundary self-intersection test (sparse grid) | |
 //! | [`topology`] | disk check with a typed error saying what the mesh is | eq. 2.6-2.7 |
 //! | [`cut`] | cut a closed or multiply-bounded mesh into a disk, with its seam | Erickson-Whittlesey 2005 |
