@@ -39,6 +39,10 @@ enum Command {
     Param(commands::param::Args),
     /// Geodesic distance from source vertices (heat, fmm, dijkstra), to a PLY file; optional path to an OBJ polyline.
     Geodesic(commands::geodesic::Args),
+    /// 4-to-1 subdivision: midpoint, Loop or modified butterfly.
+    Subdivide(commands::wavelet::SubdivideArgs),
+    /// Wavelet multiresolution analysis: statistics, compression, levels of detail.
+    Wavelet(commands::wavelet::Args),
 }
 
 /// Exits quietly when standard output is closed early (`mesh info | head`):
@@ -72,6 +76,8 @@ fn main() {
         Command::Curvature(args) => commands::curvature::run(args),
         Command::Param(args) => commands::param::run(args),
         Command::Geodesic(args) => commands::geodesic::run(args),
+        Command::Subdivide(args) => commands::wavelet::run_subdivide(args),
+        Command::Wavelet(args) => commands::wavelet::run(args),
     };
     if let Err(e) = result {
         eprintln!("mesh: error: {e}");

@@ -220,6 +220,42 @@ fn must_be_even(topo: &Topology<'_>, v: u32) -> bool {
     }
 }
 
+/// Connected component of each face (through shared vertices, which for a
+/// manifold is through shared edges) by union-find, and the count. O(F).
+fn face_components(topo: &Topology<'_>, faces: &[[u32; 3]]) -> (Vec<u32>, usize) {
+    let mut parent: Vec<u32> = (0..topo.vertex_count() as u32).collect();
+    fn find(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            let p = parent[parent[i as usize] as usize];
+            parent[i as usize] = p;
+            i = p;
+        }
+        i
+    }
+    for &[a, b, c] in faces {
+        for (x, y) in [(a, b), (a, c)] {
+            let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
+            if rx != ry {
+                parent[rx.max(ry) as usize] = rx.min(ry);
+            }
+        }
+    }
+    let mut label = vec![UNSET; parent.len()];
+    let mut count = 0;
+    let comp = faces
+        .iter()
+        .map(|f| {
+            let r = find(&mut parent, f[0]) as usize;
+            if label[r] == UNSET {
+                label[r] = count;
+                count += 1;
+            }
+            label[r]
+        })
+        .collect();
+    (comp, count as usize)
+}
+
 /// Reverses one 4-to-1 split of the manifold mesh `faces` (with topology
 /// `topo`), giving the coarse mesh and its topology, or says why not.
 fn reverse(topo: &Topology<'_>, faces: &[[u32; 3]]) -> Result<(Reversal, Topology<'static>), String> {
@@ -227,7 +263,7 @@ fn reverse(topo: &Topology<'_>, faces: &[[u32; 3]]) -> Result<(Reversal, Topolog
     if nf % 4 != 0 {
         return Err(format!("{nf} faces is not a multiple of 4"));
     }
-    let (face_comp, count) = topo.face_components();
+    let (face_comp, count) = face_components(topo, faces);
     let mut forced = vec![u32::MAX; count];
     let mut comp_faces = vec![0usize; count];
     for &c in &face_comp {
@@ -297,25 +333,16 @@ fn build_reversal(topo: &Topology<'_>, g: Grouping<'_>) -> Result<(Reversal, Top
             evens.push(v as u32);
         }
     }
-    let mut parent = vec![[UNSET; 2]; n];
     let mut coarse_faces = Vec::with_capacity(g.groups.len());
-    for &(t, [b, c, a]) in &g.groups {
+    for &(_, [b, c, a]) in &g.groups {
         // Central half-edge k runs m_k -> m_{k+1}; the even across it lies
-        // between them, so m_0 splits (a, b), m_1 (b, c), m_2 (c, a).
+        // between them, so m_0 splits (a, b), m_1 (b, c), m_2 (c, a): the
+        // edges 0, 1, 2 of the coarse face (a, b, c).
         let [ca, cb, cc] = [a, b, c].map(|v| coarse_of[v as usize]);
         if ca == cb || cb == cc || cc == ca {
             return Err("a coarse triangle would repeat a vertex".into());
         }
         coarse_faces.push([ca, cb, cc]);
-        for (k, edge) in [[ca, cb], [cb, cc], [cc, ca]].into_iter().enumerate() {
-            let m = topo.origin(3 * t + k as u32) as usize;
-            let key = [edge[0].min(edge[1]), edge[0].max(edge[1])];
-            match parent[m] {
-                [UNSET, _] => parent[m] = key,
-                p if p == key => {}
-                _ => return Err(format!("vertex v{m} would split two different coarse edges")),
-            }
-        }
     }
     let coarse =
         Topology::new(evens.len(), &coarse_faces).map_err(|_| "the coarser mesh would not be manifold")?.into_owned();
@@ -323,13 +350,52 @@ fn build_reversal(topo: &Topology<'_>, g: Grouping<'_>) -> Result<(Reversal, Top
     if coarse.edge_count() != odd {
         return Err(format!("{odd} edge midpoints for {} coarse edges", coarse.edge_count()));
     }
-    // Distinct parents: sort the parent keys of odd vertices and look for repeats.
-    let mut keys: Vec<[u32; 2]> = (0..n).filter(|&v| coarse_of[v] == UNSET).map(|v| parent[v]).collect();
-    keys.sort_unstable();
-    if keys.windows(2).any(|w| w[0] == w[1]) || keys.first().is_some_and(|k| k[0] == UNSET) {
-        return Err("two edge midpoints would split the same coarse edge".into());
+    // Each coarse edge gets one midpoint and each midpoint one edge.
+    let mut parent = vec![[UNSET; 2]; n];
+    let mut edge_odd = vec![UNSET; odd];
+    for (f, &(t, _)) in g.groups.iter().enumerate() {
+        for (k, e) in coarse.face_edges(f).into_iter().enumerate() {
+            let m = topo.origin(3 * t + k as u32);
+            match edge_odd[e as usize] {
+                UNSET => edge_odd[e as usize] = m,
+                x if x == m => continue,
+                _ => return Err("two edge midpoints would split the same coarse edge".into()),
+            }
+            if parent[m as usize][0] != UNSET {
+                return Err(format!("vertex v{m} would split two different coarse edges"));
+            }
+            parent[m as usize] = coarse.edges()[e as usize];
+        }
     }
     Ok((Reversal { evens, coarse_of, parent, coarse_faces }, coarse))
+}
+
+/// Sorts `(key, value)` pairs by key in O(n + len): counting sort on the
+/// first key component (below `n`), then the small buckets by the second.
+fn sort_by_edge(items: Vec<([u32; 2], u32)>, n: usize) -> Vec<([u32; 2], u32)> {
+    let mut start = vec![0u32; n + 1];
+    for (k, _) in &items {
+        start[k[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut sorted = vec![([0u32; 2], 0u32); items.len()];
+    for item in items {
+        let slot = &mut start[item.0[0] as usize];
+        sorted[*slot as usize] = item;
+        *slot += 1;
+    }
+    // start[v] now ends bucket v; bucket v begins where bucket v - 1 ends.
+    let mut begin = 0;
+    for &end in &start[..n] {
+        let bucket = &mut sorted[begin..end as usize];
+        if bucket.len() > 1 {
+            bucket.sort_unstable();
+        }
+        begin = end as usize;
+    }
+    sorted
 }
 
 /// Hierarchical numbering from the reversals (finest first): the numbering
@@ -350,14 +416,14 @@ fn assemble(mesh: &TriMesh, steps: &[Reversal]) -> Result<Hierarchy> {
         let r = &steps[levels - 1 - j];
         let fine_n = r.coarse_of.len();
         let mut next: Vec<u32> = hier_to_level.iter().map(|&c| r.evens[c as usize]).collect();
-        let mut odd: Vec<([u32; 2], u32)> = (0..fine_n as u32)
+        let odd: Vec<([u32; 2], u32)> = (0..fine_n as u32)
             .filter(|&v| r.coarse_of[v as usize] == UNSET)
             .map(|v| {
                 let [a, b] = r.parent[v as usize].map(|c| level_to_hier[c as usize]);
                 ([a.min(b), a.max(b)], v)
             })
             .collect();
-        odd.sort_unstable();
+        let odd = sort_by_edge(odd, hier_to_level.len());
         next.extend(odd.iter().map(|o| o.1));
         parents.push(odd.into_iter().map(|o| o.0).collect());
         let mut inverse = vec![0u32; fine_n];

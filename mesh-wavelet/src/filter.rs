@@ -24,7 +24,7 @@ use crate::hierarchy::Hierarchy;
 use crate::rules::{self, find_edge, Scratch};
 use crate::scheme::{Scheme, WaveletKind};
 use crate::topology::Topology;
-use crate::update::{update_weights, UpdateScratch};
+use crate::update::{update_weights, Rings, UpdateScratch};
 
 /// What the filter banks transform: `f64` scalar functions or `DVec3`
 /// positions on the mesh.
@@ -91,7 +91,8 @@ impl LevelFilter {
         let mut smooth = (scheme == Scheme::Loop)
             .then(|| (loop_even.iter().map(|t| t.0).collect::<Vec<_>>(), Rows::with_capacity(odd, 2 * odd)));
         let mut scratch = Scratch::default();
-        let mut update_scratch = UpdateScratch::new(coarse);
+        let rings = (kind == WaveletKind::Lifted).then(|| Rings::new(topo));
+        let mut update_scratch = UpdateScratch::new();
         let mut row = Vec::with_capacity(16);
         let mut opposite = Vec::with_capacity(2);
         for (i, &[a, b]) in parents.iter().enumerate() {
@@ -102,9 +103,9 @@ impl LevelFilter {
             row.clear();
             rules::odd_mask(topo, scheme, a, b, &opposite, &mut scratch, &mut row);
             predict.push_row(&row);
-            if let Some(u) = &mut update {
+            if let (Some(u), Some(rings)) = (&mut update, &rings) {
                 row.clear();
-                update_weights(topo, a, b, &opposite, &mut update_scratch, &mut row);
+                update_weights(rings, a, b, &opposite, &mut update_scratch, &mut row);
                 u.push_row(&row);
             }
             if let Some((_, g)) = &mut smooth {

@@ -361,34 +361,6 @@ impl<'a> Topology<'a> {
         let through = |from: u32, to: u32| self.out(from).iter().find(|&&h| self.dest(h) == to).copied();
         through(a, b).or_else(|| through(b, a)).map(|h| self.edge(h))
     }
-
-    /// Connected component of each face (through shared edges) and the count.
-    pub(crate) fn face_components(&self) -> (Vec<u32>, usize) {
-        let nf = self.face_count();
-        let mut comp = vec![NONE; nf];
-        let mut count = 0;
-        let mut stack = Vec::new();
-        for f in 0..nf {
-            if comp[f] != NONE {
-                continue;
-            }
-            comp[f] = count as u32;
-            stack.push(f as u32);
-            while let Some(g) = stack.pop() {
-                for k in 0..3 {
-                    if let Some(t) = self.twin(3 * g + k) {
-                        let nb = t / 3;
-                        if comp[nb as usize] == NONE {
-                            comp[nb as usize] = count as u32;
-                            stack.push(nb);
-                        }
-                    }
-                }
-            }
-            count += 1;
-        }
-        (comp, count)
-    }
 }
 
 #[cfg(test)]

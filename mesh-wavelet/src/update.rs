@@ -21,12 +21,47 @@
 //! approximate their smooth scaling functions).
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::rules::ring_with_face_counts;
 use crate::topology::{Kind, Topology};
 
+/// The closed 1-rings of every vertex of K^j, stored contiguously
+/// (counter-clockwise, interior rings rotated on demand): one random access
+/// per stencil vertex instead of one per neighbour. Cost O(F_j) to build.
+pub(crate) struct Rings {
+    start: Vec<u32>,
+    entries: Vec<(u32, u8)>,
+    faces: Vec<u32>,
+    interior: Vec<bool>,
+}
+
+impl Rings {
+    pub(crate) fn new(topo: &Topology) -> Self {
+        let n = topo.vertex_count();
+        let mut start = Vec::with_capacity(n + 1);
+        let mut entries = Vec::with_capacity(2 * topo.edge_count() + n);
+        let mut faces = Vec::with_capacity(n);
+        let mut interior = Vec::with_capacity(n);
+        let mut ring = Vec::new();
+        start.push(0);
+        for v in 0..n as u32 {
+            ring_with_face_counts(topo, v, &mut ring);
+            entries.extend_from_slice(&ring);
+            start.push(entries.len() as u32);
+            faces.push(topo.out(v).len() as u32);
+            interior.push(topo.kind(v) == Kind::Interior);
+        }
+        Self { start, entries, faces, interior }
+    }
+
+    fn ring(&self, v: u32) -> &[(u32, u8)] {
+        &self.entries[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+    }
+}
+
 /// Scratch space for [`update_weights`], reused across the odd vertices of
-/// one level: `slot_of[v]` is valid when `stamp[v]` equals the current call.
+/// one level: a small open-addressing table from vertex to local slot.
 ///
 /// The weights depend only on the combinatorics of the diamond's
 /// neighbourhood, so they are memoised by a byte signature of it: the rings
@@ -37,49 +72,77 @@ use crate::topology::{Kind, Topology};
 pub(crate) struct UpdateScratch {
     slots: Vec<u32>,
     rows: Vec<[f64; 4]>,
-    ring: Vec<(u32, u8)>,
-    stamp: Vec<u32>,
-    slot_of: Vec<u32>,
-    call: u32,
+    table: [(u32, u8); TABLE],
+    used: Vec<u8>,
     signature: Vec<u8>,
-    cache: HashMap<Vec<u8>, Option<[f64; 4]>>,
+    cache: HashMap<Vec<u8>, Option<[f64; 4]>, BuildHasherDefault<FxHasher>>,
 }
 
+const TABLE: usize = 128;
+
 impl UpdateScratch {
-    /// Scratch for a coarse mesh of `n` vertices.
-    pub(crate) fn new(n: usize) -> Self {
+    /// Empty scratch.
+    pub(crate) fn new() -> Self {
         Self {
             slots: Vec::new(),
             rows: Vec::new(),
-            ring: Vec::new(),
-            stamp: vec![u32::MAX; n],
-            slot_of: vec![0; n],
-            call: 0,
+            table: [(u32::MAX, 0); TABLE],
+            used: Vec::with_capacity(TABLE),
             signature: Vec::with_capacity(128),
-            cache: HashMap::new(),
+            cache: HashMap::default(),
         }
     }
 
     fn begin(&mut self) {
+        for &i in &self.used {
+            self.table[i as usize].0 = u32::MAX;
+        }
+        self.used.clear();
         self.slots.clear();
         self.rows.clear();
-        self.call = self.call.wrapping_add(1);
-        if self.call == u32::MAX {
-            self.stamp.fill(u32::MAX);
-            self.call = 0;
+    }
+
+    /// The local slot of `v`, or `None` when the neighbourhood is too large
+    /// for the table (then the caller falls back to no update).
+    fn slot(&mut self, v: u32) -> Option<usize> {
+        let mut i = hash_slot(v);
+        loop {
+            match self.table[i].0 {
+                x if x == v => return Some(self.table[i].1 as usize),
+                u32::MAX => break,
+                _ => i = (i + 1) % TABLE,
+            }
+        }
+        if self.slots.len() >= TABLE / 2 {
+            return None;
+        }
+        self.table[i] = (v, self.slots.len() as u8);
+        self.used.push(i as u8);
+        self.slots.push(v);
+        self.rows.push([0.0; 4]);
+        Some(self.slots.len() - 1)
+    }
+}
+
+fn hash_slot(v: u32) -> usize {
+    (v.wrapping_mul(0x9E37_79B1) >> 25) as usize % TABLE
+}
+
+/// A small fast hasher for the signatures (FxHash's multiply-rotate).
+#[derive(Default)]
+struct FxHasher(u64);
+
+impl Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.0 = (self.0.rotate_left(5) ^ u64::from_le_bytes(word)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
         }
     }
 
-    fn slot(&mut self, v: u32) -> usize {
-        let i = v as usize;
-        if self.stamp[i] == self.call {
-            return self.slot_of[i] as usize;
-        }
-        self.stamp[i] = self.call;
-        self.slot_of[i] = self.slots.len() as u32;
-        self.slots.push(v);
-        self.rows.push([0.0; 4]);
-        self.slots.len() - 1
+    fn finish(&self) -> u64 {
+        self.0
     }
 }
 
@@ -87,9 +150,9 @@ impl UpdateScratch {
 /// vertices `opposite` (one or two), appended to `row` as (coarse vertex,
 /// weight). Falls back to no update (the lazy wavelet) if the local system
 /// is singular, which only a degenerate diamond (repeated vertices) causes.
-/// Cost O(valence^2) per odd vertex.
+/// Cost O(valence^2) per odd vertex, O(valence) on a memoised configuration.
 pub(crate) fn update_weights(
-    topo: &Topology,
+    rings: &Rings,
     a: u32,
     b: u32,
     opposite: &[u32],
@@ -111,39 +174,35 @@ pub(crate) fn update_weights(
     scratch.begin();
     scratch.signature.clear();
     scratch.signature.push(size as u8);
-    let mut cacheable = true;
     // Column k of M: <phi^j_k, phi^j_i> for i in the closed ring of stencil
     // vertex k, walked from a canonical neighbour (b for a; a for b and c; b for d).
     for k in 0..size {
         let v = stencil[k].0;
-        let faces = topo.out(v).len();
-        let s = scratch.slot(v);
+        let faces = rings.faces[v as usize];
+        let Some(s) = scratch.slot(v) else { return };
         scratch.rows[s][k] += 4.0 * faces as f64 / 6.0;
-        let mut ring = std::mem::take(&mut scratch.ring);
-        ring_with_face_counts(topo, v, &mut ring);
-        if topo.kind(v) == Kind::Interior {
+        let ring = rings.ring(v);
+        let first = if rings.interior[v as usize] {
             let start = if k == 0 || k == 3 { b } else { a };
-            if let Some(p) = ring.iter().position(|r| r.0 == start) {
-                ring.rotate_left(p);
-            }
+            ring.iter().position(|r| r.0 == start).unwrap_or(0)
+        } else {
+            0
+        };
+        if faces > 255 || ring.len() > 255 {
+            return; // keep the lazy wavelet at absurd valences
         }
-        cacheable &= faces < 256 && ring.len() < 256;
-        scratch.signature.extend([faces as u8, ring.len() as u8, (topo.kind(v) == Kind::Boundary) as u8]);
-        for &(w, fe) in &ring {
-            let s = scratch.slot(w);
+        scratch.signature.extend([faces as u8, ring.len() as u8, rings.interior[v as usize] as u8]);
+        for &(w, fe) in ring[first..].iter().chain(&ring[..first]) {
+            let Some(s) = scratch.slot(w) else { return };
             scratch.rows[s][k] += fe as f64 / 3.0;
-            cacheable &= s < 256;
             scratch.signature.extend([s as u8, fe]);
         }
-        scratch.ring = ring;
     }
-    let weights = match cacheable.then(|| scratch.cache.get(&scratch.signature)).flatten() {
+    let weights = match scratch.cache.get(&scratch.signature) {
         Some(&w) => w,
         None => {
             let w = solve_normal_equations(scratch, &stencil[..size]);
-            if cacheable {
-                scratch.cache.insert(scratch.signature.clone(), w);
-            }
+            scratch.cache.insert(scratch.signature.clone(), w);
             w
         }
     };

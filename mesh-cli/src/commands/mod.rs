@@ -9,3 +9,4 @@ pub mod info;
 pub mod param;
 pub mod render;
 pub mod report;
+pub mod wavelet;

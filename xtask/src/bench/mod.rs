@@ -13,6 +13,7 @@ mod core;
 mod curvature;
 mod geodesic;
 mod param;
+mod wavelet;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -40,7 +41,8 @@ impl<'a> Operation<'a> {
 /// Every group of operations: a function from the mesh file and its content
 /// to the operations.
 type Group = for<'a> fn(&'a std::path::Path, &'a MeshData) -> Vec<Operation<'a>>;
-const GROUPS: &[Group] = &[core::operations, curvature::operations, geodesic::operations, param::operations];
+const GROUPS: &[Group] =
+    &[core::operations, curvature::operations, geodesic::operations, param::operations, wavelet::operations];
 
 /// Arguments of `cargo xtask bench`.
 #[derive(Debug, clap::Args)]

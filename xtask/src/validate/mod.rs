@@ -8,6 +8,7 @@ mod core;
 mod curvature;
 mod geodesic;
 mod param;
+mod wavelet;
 
 use std::path::{Path, PathBuf};
 
@@ -19,7 +20,13 @@ use crate::Result;
 type Group = (&'static str, fn(&mut Validator));
 
 /// Every group of checks, in the order they run.
-const GROUPS: &[Group] = &[("core", core::run), ("curvature", curvature::run), ("geodesic", geodesic::run), ("param", param::run)];
+const GROUPS: &[Group] = &[
+    ("core", core::run),
+    ("curvature", curvature::run),
+    ("geodesic", geodesic::run),
+    ("param", param::run),
+    ("wavelet", wavelet::run),
+];
 
 /// Arguments of `cargo xtask validate`.
 #[derive(Debug, clap::Args)]
