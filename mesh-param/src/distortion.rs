@@ -95,7 +95,8 @@ pub struct DistortionReport {
 }
 
 /// Distortion of one face from its surface corners `p` and parameter corners
-/// `q` (eq. 2.8-2.9). O(1).
+/// `q` (eq. 2.8-2.9), for finite input (as a `TriMesh` guarantees; see
+/// [`distortion`], which also checks the UVs). O(1).
 pub fn face_distortion(p: [DVec3; 3], q: [DVec2; 3]) -> FaceDistortion {
     let (a, b) = (p[1] - p[0], p[2] - p[0]);
     let (d1, d2) = (q[1] - q[0], q[2] - q[0]);

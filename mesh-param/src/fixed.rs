@@ -184,6 +184,44 @@ mod tests {
     }
 
     #[test]
+    fn tutte_solves_eq_2_13_with_inverse_valence_weights() {
+        // The solver scales each row by |N(i)|; the solution must satisfy the
+        // unscaled equations q_i = mean of the neighbours.
+        let mut m = shapes::disk(6, 9).unwrap();
+        for p in m.positions_mut() {
+            p.z = p.x * p.y;
+        }
+        let b = boundary(&m);
+        let pos = crate::boundary::circle(&m, &b, crate::Spacing::Uniform);
+        let uv = FixedBoundarySolver::new(&m, &Uniform, &b, DegeneratePolicy::Uniform).unwrap().solve(&pos).unwrap();
+        let conn = m.connectivity();
+        for v in m.vertex_ids() {
+            if conn.is_boundary_vertex(v) {
+                continue;
+            }
+            let ring: Vec<VertexId> = conn.neighbors(v).collect();
+            let mean = ring.iter().map(|w| uv[w.idx()]).sum::<DVec2>() / ring.len() as f64;
+            assert!(uv[v.idx()].distance(mean) < 1e-14, "{v}");
+        }
+    }
+
+    #[test]
+    fn one_factorization_serves_several_boundaries() {
+        let m = shapes::disk(5, 4).unwrap();
+        let b = boundary(&m);
+        let solver = FixedBoundarySolver::new(&m, &MeanValue, &b, DegeneratePolicy::Uniform).unwrap();
+        for pos in
+            [crate::boundary::circle(&m, &b, crate::Spacing::ChordLength), crate::boundary::square(&m, &b).unwrap()]
+        {
+            let again = FixedBoundarySolver::new(&m, &MeanValue, &b, DegeneratePolicy::Uniform).unwrap();
+            let (x, y) = (solver.solve(&pos).unwrap(), again.solve(&pos).unwrap());
+            assert!(x.iter().zip(&y).all(|(p, q)| p == q));
+            // The constrained vertices sit exactly where they were put.
+            assert!(b.iter().zip(&pos).all(|(v, p)| x[v.idx()] == *p));
+        }
+    }
+
+    #[test]
     fn solver_checks_its_input() {
         let m = shapes::disk(2, 1).unwrap();
         let b = boundary(&m);

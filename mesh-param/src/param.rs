@@ -259,3 +259,18 @@ pub fn parameterize_cut(mesh: &TriMesh, options: &Options) -> Result<CutParamete
     let param = parameterize(&cut.mesh, options)?;
     Ok(CutParameterization { cut, param })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn method_names_round_trip() {
+        for name in Method::NAMES {
+            assert_eq!(Method::from_name(name).map(|m| m.name()), Some(*name));
+        }
+        assert_eq!(Method::from_name("conformal"), Some(Method::Harmonic));
+        assert!(Method::from_name("magic").is_none());
+        assert!(Method::Lscm.weights().is_none() && Method::Tutte.weights().is_some());
+    }
+}
