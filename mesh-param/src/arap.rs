@@ -10,7 +10,7 @@
 use glam::{DMat2, DVec2};
 use mesh_core::{TriMesh, VertexId, VertexKind};
 
-use crate::dirichlet::Dirichlet;
+use crate::dirichlet::dirichlet_solver;
 use crate::error::{ParamError, Result};
 use crate::fixed::{weight_matrix, DegeneratePolicy};
 use crate::topology::require_disk;
@@ -20,7 +20,7 @@ use crate::weights::{Harmonic, LocalTriangle, WeightContext};
 /// isometric flattening, ready for any number of iterations from any start.
 #[derive(Debug, Clone)]
 pub struct Arap {
-    solver: Dirichlet,
+    solver: mesh_core::solver::DirichletSolver,
     /// Per face: flattened corners (x_0 = 0) and the opposite cotangents of
     /// the half-edges 0 -> 1, 1 -> 2, 2 -> 0.
     flat: Vec<([DVec2; 3], [f64; 3])>,
@@ -54,7 +54,7 @@ impl Arap {
         let l = weight_matrix(&ctx, &Harmonic);
         let mut is_fixed = vec![false; n];
         pinned.iter().for_each(|&v| is_fixed[v] = true);
-        let solver = Dirichlet::new(&l, &is_fixed, true)?;
+        let solver = dirichlet_solver(&l, &is_fixed, true)?;
         Ok(Self { solver, flat, faces: mesh.faces().to_vec(), vertex_count: n })
     }
 
@@ -100,7 +100,7 @@ impl Arap {
                     bv[j] -= d.y;
                 }
             }
-            let x = self.solver.solve(&[&fixed_u, &fixed_v], Some(&[&bu, &bv]))?;
+            let x = self.solver.solve_many(&[&fixed_u, &fixed_v], Some(&[&bu, &bv]))?;
             uv = x[0].iter().zip(&x[1]).map(|(u, v)| DVec2::new(*u, *v)).collect();
         }
         Ok(uv)

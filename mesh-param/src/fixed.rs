@@ -8,7 +8,7 @@ use mesh_core::solver::Factorization;
 use mesh_core::sprs::CsMat;
 use mesh_core::{FaceId, HalfedgeId, MeshError, TriMesh, VertexId, VertexKind};
 
-use crate::dirichlet::Dirichlet;
+use crate::dirichlet::dirichlet_solver;
 use crate::error::{ParamError, Result};
 use crate::weights::{EdgeInfo, WeightContext, Weights};
 
@@ -67,7 +67,7 @@ pub fn weight_matrix<W: Weights + ?Sized>(ctx: &WeightContext<'_>, weights: &W) 
 /// O(V + E) plus one sparse factorization of the free block.
 #[derive(Debug, Clone)]
 pub struct FixedBoundarySolver {
-    solver: Dirichlet,
+    solver: mesh_core::solver::DirichletSolver,
     /// For each slot of `solver.fixed()`: index into the caller's constraints,
     /// or `None` for an unreferenced vertex.
     slot_source: Vec<Option<usize>>,
@@ -110,7 +110,7 @@ impl FixedBoundarySolver {
             .map(|v| slot_of[v].is_some() || conn.vertex_kind(VertexId::new(v)) == VertexKind::Isolated)
             .collect();
         let a = weight_matrix(&ctx, weights);
-        let solver = Dirichlet::new(&a, &is_fixed, weights.is_symmetric())?;
+        let solver = dirichlet_solver(&a, &is_fixed, weights.is_symmetric())?;
         let slot_source = solver.fixed().iter().map(|&v| slot_of[v]).collect();
         Ok(Self { solver, slot_source, constrained: constrained.len(), degenerate: ctx.degenerate_faces().to_vec() })
     }
@@ -148,7 +148,7 @@ impl FixedBoundarySolver {
         let fv: Vec<f64> = self.slot_source.iter().map(|s| value(s).y).collect();
         let [u, v]: [Vec<f64>; 2] = self
             .solver
-            .solve(&[&fu, &fv], None)?
+            .solve_many(&[&fu, &fv], None)?
             .try_into()
             .map_err(|_| MeshError::Solver("expected two solutions".into()))?;
         Ok(u.into_iter().zip(v).map(|(u, v)| DVec2::new(u, v)).collect())

@@ -8,7 +8,7 @@ use glam::DVec2;
 use mesh_core::sprs::CsMat;
 use mesh_core::{FaceId, TriMesh, VertexId, VertexKind};
 
-use crate::dirichlet::Dirichlet;
+use crate::dirichlet::dirichlet_solver;
 use crate::error::{ParamError, Result};
 use crate::fixed::{weight_matrix, DegeneratePolicy};
 use crate::topology::require_disk;
@@ -133,9 +133,9 @@ pub fn lscm(mesh: &TriMesh, options: &LscmOptions) -> Result<LscmMap> {
         }
     }
     let is_fixed: Vec<bool> = fixed_value.iter().map(Option::is_some).collect();
-    let solver = Dirichlet::new(&q, &is_fixed, true)?;
+    let solver = dirichlet_solver(&q, &is_fixed, true)?;
     let values: Vec<f64> = solver.fixed().iter().map(|&k| fixed_value[k].unwrap_or(0.0)).collect();
-    let x = solver.solve(&[&values], None)?.pop().unwrap_or_default();
+    let x = solver.solve(&values, None)?;
     let mut uv: Vec<DVec2> = (0..n).map(|v| DVec2::new(x[v], x[n + v])).collect();
     if options.normalize {
         normalize_to_unit_box(&mut uv);
