@@ -125,3 +125,39 @@ fn report_writes_viewer_files() {
     }
     assert!(out.join("report.json").is_file());
 }
+
+#[test]
+fn report_runs_every_analysis_on_a_torus() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let v = json(&["report", "--shape", "torus", "--res", "16", "--out", out.to_str().unwrap()]);
+    let s = &v["sections"];
+    // Torus R = 2, r = 0.5: k1 = 1/r = 2 everywhere; Gauss-Bonnet total 0.
+    // (16 vertices around the tube: the estimate is within 2%.)
+    assert!((s["curvature"]["k1"]["mean"].as_f64().unwrap() - 2.0).abs() < 0.05, "{}", s["curvature"]);
+    assert!(s["curvature"]["gauss_bonnet_total"].as_f64().unwrap().abs() < 1e-10);
+    // Farthest point from a vertex on the outer equator: half way round the
+    // tube and half way round the axis, at most pi (R + r) + pi r.
+    let far = s["geodesic"]["max_distance_heat"].as_f64().unwrap();
+    assert!(far > 2.0 * std::f64::consts::PI * 0.9 && far < std::f64::consts::PI * 3.0, "{far}");
+    assert_eq!(s["geodesic"]["unreachable"], 0);
+    assert_eq!(s["parameterization"]["bijective"], true);
+    assert!(s["wavelet"]["levels"].as_u64().unwrap() >= 1);
+    for f in ["mesh.ply", "uv.obj", "geodesic_path.obj", "mean.png", "distance.png"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let ply = mesh_io_fields(&out.join("mesh.ply"));
+    for name in ["gaussian", "mean", "k1", "k2", "distance"] {
+        assert!(ply.contains(&name.to_owned()), "{name} missing from {ply:?}");
+    }
+}
+
+/// Names of the per-vertex properties in a binary PLY header.
+fn mesh_io_fields(path: &Path) -> Vec<String> {
+    let bytes = std::fs::read(path).unwrap();
+    let end = bytes.windows(10).position(|w| w == b"end_header").unwrap();
+    String::from_utf8_lossy(&bytes[..end])
+        .lines()
+        .filter_map(|l| l.strip_prefix("property double ").map(str::to_owned))
+        .collect()
+}

@@ -1,17 +1,24 @@
 //! `mesh report`: the main job. Runs every analysis of the workspace on one
 //! mesh and writes, into one folder, a JSON report and files a viewer opens
-//! directly (PLY with per-vertex fields, OBJ polylines).
+//! directly: `mesh.ply` (normals and every per-vertex field), PNG pictures
+//! of the fields, the parameterization as `uv.obj`, the traced geodesic and
+//! the feature edges as OBJ polylines.
+//!
+//! A section that does not apply to the mesh (a parameterization of a mesh
+//! that cannot be cut to a disk, wavelets without subdivision connectivity)
+//! records why in the report instead of failing the whole run.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use mesh_core::{geometry, operators, VertexId};
+use mesh_core::glam::DVec3;
+use mesh_core::{geometry, operators, TriMesh, VertexId, VertexKind};
 use mesh_io::MeshView;
 use serde_json::{json, Map, Value};
 
 use super::info::Info;
 use crate::input::InputArgs;
-use crate::output::{check_not_input, write_json, CliResult};
+use crate::output::{check_not_input, finite, write_json, CliResult};
 use crate::render::{render_png, RenderOptions};
 
 /// Arguments of `mesh report`.
@@ -30,15 +37,19 @@ pub struct Args {
     up: String,
 }
 
-/// Collects sections, timings and written files.
-struct Report {
+/// What the report collects: JSON sections, timings, per-vertex fields and
+/// the files written.
+struct Report<'a> {
     dir: PathBuf,
+    input: Option<&'a Path>,
+    picture: RenderOptions,
     sections: Map<String, Value>,
     timings_ms: Map<String, Value>,
+    fields: Vec<(&'static str, Vec<f64>)>,
     files: Vec<String>,
 }
 
-impl Report {
+impl Report<'_> {
     fn time<T>(&mut self, name: &str, f: impl FnOnce() -> T) -> T {
         let t = Instant::now();
         let out = f();
@@ -46,9 +57,26 @@ impl Report {
         out
     }
 
-    fn file(&mut self, name: &str) -> PathBuf {
+    /// The path of an output file, recorded in the report.
+    fn file(&mut self, name: &str) -> CliResult<PathBuf> {
+        let path = self.dir.join(name);
+        check_not_input(&path, self.input, false)?;
         self.files.push(name.to_owned());
-        self.dir.join(name)
+        Ok(path)
+    }
+
+    /// Adds a section, or its error when the analysis does not apply.
+    fn section(&mut self, name: &str, result: CliResult<Value>) {
+        let value = result.unwrap_or_else(|e| json!({ "applicable": false, "reason": e.to_string() }));
+        self.sections.insert(name.into(), value);
+    }
+
+    /// Keeps a per-vertex field for `mesh.ply` and renders it.
+    fn field(&mut self, mesh: &TriMesh, name: &'static str, values: Vec<f64>) -> CliResult<()> {
+        let png = self.file(&format!("{name}.png"))?;
+        render_png(mesh, Some(&values), &png, &self.picture)?;
+        self.fields.push((name, values));
+        Ok(())
     }
 }
 
@@ -57,40 +85,48 @@ pub fn run(args: &Args) -> CliResult<()> {
     if !(args.feature_angle.is_finite() && (0.0..=180.0).contains(&args.feature_angle)) {
         return Err(format!("--feature-angle must be in [0, 180], got {}", args.feature_angle).into());
     }
+    let picture = RenderOptions { up: super::render::axis(&args.up)?, ..RenderOptions::default() };
     std::fs::create_dir_all(&args.out).map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
-    let mut report = Report { dir: args.out.clone(), sections: Map::new(), timings_ms: Map::new(), files: Vec::new() };
+    let mut report = Report {
+        dir: args.out.clone(),
+        input: args.input.path(),
+        picture,
+        sections: Map::new(),
+        timings_ms: Map::new(),
+        fields: Vec::new(),
+        files: Vec::new(),
+    };
     let data = report.time("read", || args.input.load())?;
     let mesh = &data.mesh;
     let info = report.time("info", || Info::of(mesh));
     report.sections.insert("info".into(), serde_json::to_value(&info)?);
 
-    let normals = report.time("vertex_normals", || geometry::vertex_normals(mesh, geometry::NormalWeighting::Area));
-    let mass = report.time("mass_voronoi", || operators::lumped_mass(mesh, operators::MassKind::MixedVoronoi));
-    let laplacian = report.time("cotan_laplacian", || operators::cotan_laplacian(mesh));
-    let negative = laplacian.iter().filter(|(v, (i, j))| i != j && **v > 0.0).count() / 2;
-    let features = report.time("feature_edges", || geometry::feature_edges(mesh, args.feature_angle.to_radians()));
-    report.sections.insert(
-        "operators".into(),
-        json!({
-            "laplacian_nonzeros": laplacian.nnz(),
-            "negative_cotan_weights": negative,
-            "feature_edges": features.len(),
-            "feature_angle_degrees": args.feature_angle,
-        }),
-    );
+    let operators = operators_section(&mut report, mesh, args.feature_angle);
+    report.section("operators", operators);
+    let curvature = curvature_section(&mut report, mesh);
+    report.section("curvature", curvature);
+    let geodesic = geodesic_section(&mut report, mesh);
+    report.section("geodesic", geodesic);
+    let param = param_section(&mut report, mesh);
+    report.section("parameterization", param);
+    let wavelet = wavelet_section(&mut report, mesh);
+    report.section("wavelet", wavelet);
 
-    let ply = report.file("mesh.ply");
-    check_not_input(&ply, args.input.path(), false)?;
-    let view = MeshView::new(mesh).with_normals(&normals).with_scalar("voronoi_area", &mass);
+    let normals = geometry::vertex_normals(mesh, geometry::NormalWeighting::Area);
+    let ply = report.file("mesh.ply")?;
+    let mut view = MeshView::new(mesh).with_normals(&normals);
+    for (name, values) in &report.fields {
+        view = view.with_scalar(name, values);
+    }
     mesh_io::write(&ply, view, &mesh_io::WriteOptions::default())?;
-    write_feature_edges(&report.file("feature_edges.obj"), mesh, &features)?;
-    let picture = RenderOptions { up: super::render::axis(&args.up)?, ..RenderOptions::default() };
-    render_png(mesh, None, &report.file("mesh.png"), &picture)?;
+    let shaded = report.file("mesh.png")?;
+    render_png(mesh, None, &shaded, &report.picture)?;
 
     let summary = json!({
         "input": args.input.describe(),
         "sections": report.sections,
         "timings_ms": report.timings_ms,
+        "fields": report.fields.iter().map(|(n, _)| *n).collect::<Vec<_>>(),
         "files": report.files,
     });
     let json_path = args.out.join("report.json");
@@ -100,10 +136,138 @@ pub fn run(args: &Args) -> CliResult<()> {
     Ok(())
 }
 
-fn write_feature_edges(path: &Path, mesh: &mesh_core::TriMesh, edges: &[mesh_core::EdgeId]) -> CliResult<()> {
+/// Laplacian sanity figures and feature edges (seed 2.2.2).
+fn operators_section(report: &mut Report, mesh: &TriMesh, feature_angle: f64) -> CliResult<Value> {
+    let laplacian = report.time("cotan_laplacian", || operators::cotan_laplacian(mesh));
+    let negative = laplacian.iter().filter(|(v, (i, j))| i != j && **v > 0.0).count() / 2;
+    let mass = report.time("mass_voronoi", || operators::lumped_mass(mesh, operators::MassKind::MixedVoronoi));
+    let features = report.time("feature_edges", || geometry::feature_edges(mesh, feature_angle.to_radians()));
     let conn = mesh.connectivity();
-    let lines: Vec<[mesh_core::glam::DVec3; 2]> =
-        edges.iter().map(|&e| conn.edge_vertices(e).map(|v: VertexId| mesh.position(v))).collect();
-    mesh_io::write_polylines(path, &lines)?;
-    Ok(())
+    let lines: Vec<[DVec3; 2]> =
+        features.iter().map(|&e| conn.edge_vertices(e).map(|v: VertexId| mesh.position(v))).collect();
+    mesh_io::write_polylines(report.file("feature_edges.obj")?, &lines)?;
+    Ok(json!({
+        "laplacian_nonzeros": laplacian.nnz(),
+        "negative_cotan_weights": negative,
+        "total_voronoi_area": mass.iter().sum::<f64>(),
+        "feature_edges": features.len(),
+        "feature_angle_degrees": feature_angle,
+    }))
+}
+
+/// Min, max and mean of the values where `keep` holds.
+fn stats(values: &[f64], keep: impl Fn(usize) -> bool) -> Value {
+    let kept: Vec<f64> =
+        values.iter().enumerate().filter(|(i, v)| keep(*i) && v.is_finite()).map(|(_, v)| *v).collect();
+    if kept.is_empty() {
+        return Value::Null;
+    }
+    let min = kept.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = kept.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    json!({ "min": min, "max": max, "mean": kept.iter().sum::<f64>() / kept.len() as f64, "count": kept.len() })
+}
+
+/// Gaussian (eq. 2.25), mean (eq. 2.26) and principal curvatures (eq. 2.27-2.31).
+fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
+    use mesh_curvature::{curvature_tensor, gaussian_curvature, mean_curvature};
+    let k = report.time("gaussian_curvature", || gaussian_curvature(mesh, &Default::default()))?;
+    let h = report.time("mean_curvature", || mean_curvature(mesh, &Default::default()))?;
+    let t = report.time("principal_curvature", || curvature_tensor(mesh, &Default::default()))?;
+    let valid = |s: &[mesh_curvature::VertexStatus], i: usize| s[i].is_valid();
+    let two_pi_chi = std::f64::consts::TAU * mesh.connectivity().euler_characteristic() as f64;
+    let section = json!({
+        "gauss_bonnet_total": k.total(),
+        "two_pi_chi": two_pi_chi,
+        "gaussian": stats(&k.pointwise, |i| valid(&k.status, i)),
+        "mean": stats(&h.pointwise, |i| valid(&h.status, i)),
+        "k1": stats(&t.k1, |i| valid(&t.status, i)),
+        "k2": stats(&t.k2, |i| valid(&t.status, i)),
+        "valid_vertices": t.status.iter().filter(|s| s.is_valid()).count(),
+    });
+    report.field(mesh, "gaussian", k.pointwise)?;
+    report.field(mesh, "mean", h.pointwise)?;
+    report.field(mesh, "k1", t.k1)?;
+    report.field(mesh, "k2", t.k2)?;
+    Ok(section)
+}
+
+/// Heat-method distance from the first vertex (Crane et al. 2013), Fast
+/// Marching for comparison (eq. 2.32-2.34), and the geodesic traced back from
+/// the farthest vertex (eq. 2.35).
+fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
+    use mesh_geodesic::{fmm_distance, trace_path, FmmOptions, HeatGeodesics, SurfacePoint, TraceOptions};
+    let conn = mesh.connectivity();
+    let source = mesh
+        .vertex_ids()
+        .find(|&v| conn.vertex_kind(v) != VertexKind::Isolated)
+        .ok_or("the mesh has no referenced vertex")?;
+    let heat = report.time("heat_precompute", || HeatGeodesics::new(mesh, &Default::default()))?;
+    let d = report.time("heat_solve", || heat.distance(&[source]))?;
+    let fmm = report.time("fmm", || fmm_distance(mesh, &[source], &FmmOptions::default()))?;
+    let far = (0..d.len()).filter(|&i| d[i].is_finite()).max_by(|&a, &b| d[a].total_cmp(&d[b]));
+    let path = match far.and_then(|v| SurfacePoint::at_vertex(mesh, VertexId::new(v))) {
+        Some(start) => {
+            let p = report.time("trace_path", || trace_path(mesh, &d, &[source], start, &TraceOptions::default()))?;
+            mesh_io::write_polylines(report.file("geodesic_path.obj")?, &[&p.positions])?;
+            json!({ "from": far, "length": p.length, "points": p.points.len(), "fallback_edges": p.fallback_edges })
+        }
+        None => Value::Null,
+    };
+    let reached = d.iter().filter(|x| x.is_finite()).count();
+    let max = |v: &[f64]| finite(v.iter().copied().filter(|x| x.is_finite()).fold(f64::NAN, f64::max));
+    let section = json!({
+        "source": source.0,
+        "method": "heat",
+        "max_distance_heat": max(&d),
+        "max_distance_fmm": max(&fmm),
+        "reached": reached,
+        "unreachable": d.len() - reached,
+        "path": path,
+    });
+    report.field(mesh, "distance", d)?;
+    Ok(section)
+}
+
+/// Harmonic parameterization (eq. 2.14-2.15), cutting the mesh to a disk
+/// first when it is not one, and its distortion (eq. 2.8-2.11).
+fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
+    use mesh_param::{parameterize_cut, Method, Options};
+    let options = Options { method: Method::Harmonic, ..Options::default() };
+    let p = report.time("param_harmonic", || parameterize_cut(mesh, &options))?;
+    let uv_obj = report.file("uv.obj")?;
+    mesh_io::write(&uv_obj, MeshView::new(&p.cut.mesh).with_uvs(&p.param.uv), &mesh_io::WriteOptions::default())?;
+    let s = &p.param.report.summary;
+    Ok(json!({
+        "method": "harmonic",
+        "boundary": "circle, chord length",
+        "seam_edges": p.cut.seam.len(),
+        "cut_vertices": p.cut.mesh.vertex_count(),
+        "flipped_faces": s.flipped_faces,
+        "bijective": s.bijective,
+        "angle_distortion_mean": s.angle_distortion_mean,
+        "angle_distortion_max": s.angle_distortion_max,
+        "area_distortion_mean": s.area_distortion_mean,
+        "area_distortion_max": s.area_distortion_max,
+        "dirichlet_area_ratio": s.dirichlet_area_ratio,
+    }))
+}
+
+/// Lounsbery wavelet analysis (eq. 2.36-2.39) when the mesh has subdivision
+/// connectivity, with the coefficient decay and a compression curve.
+fn wavelet_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
+    use mesh_wavelet::{decay_rate, Multiresolution};
+    let m = report.time("wavelet_analyze", || Multiresolution::analyze(mesh, &Default::default()))?;
+    let stats = m.statistics();
+    let curve = m.compression_curve(&[0.01, 0.05, 0.2, 0.5])?;
+    Ok(json!({
+        "levels": m.levels(),
+        "base_vertices": m.base_positions().len(),
+        "base_faces": m.hierarchy().faces(0)?.len(),
+        "coefficient_mean_norm_per_level": stats.iter().map(|s| s.mean).collect::<Vec<_>>(),
+        "decay_rate": decay_rate(&stats),
+        "compression": curve.iter().map(|c| json!({
+            "keep": c.keep, "kept_coefficients": c.kept_coefficients,
+            "rms_error": c.rms_error, "max_error": c.max_error,
+        })).collect::<Vec<_>>(),
+    }))
 }
