@@ -127,60 +127,123 @@ impl BlockCholesky {
         }
     }
 
-    /// Forward substitution through one supernode, column by column
-    /// (right-looking): `x_c /= L_cc`, then `x_r -= L_rc x_c` for the rows
-    /// below, inside the supernode and in its pattern (later unknowns).
+    /// Forward substitution through one supernode, by chunks of up to
+    /// [`CHUNK`] columns (right-looking): inside the chunk `x_c /= L_cc` and
+    /// `x_r -= L_rc x_c` column by column, then every row below the chunk
+    /// (rest of the supernode, then its pattern of later unknowns) receives
+    /// `x_r -= sum_c L_rc x_c` in one visit: each row is loaded and stored
+    /// once per chunk instead of once per column.
     #[inline(always)]
     fn forward(&self, node: &Supernode, x: &mut [Lane]) {
-        let (size, rows) = (node.size, node.size + node.pattern.len());
-        let val = &self.values[node.offset..node.offset + rows * size];
-        let (head, tail) = x.split_at_mut(node.start + size);
-        let xt = &mut head[node.start..];
-        let below = node.start + size;
-        for c in 0..size {
-            let col = &val[c * rows..(c + 1) * rows];
-            let xc = scaled(&xt[c], 1.0 / col[c]);
-            xt[c] = xc;
-            for r in c + 1..size {
-                sub_scaled(&mut xt[r], col[r], &xc);
+        let mut c0 = 0;
+        while c0 < node.size {
+            match node.size - c0 {
+                1 => self.forward_chunk::<1>(node, c0, x),
+                2 => self.forward_chunk::<2>(node, c0, x),
+                3 => self.forward_chunk::<3>(node, c0, x),
+                _ => self.forward_chunk::<CHUNK>(node, c0, x),
             }
-            for (&l, &row) in col[size..].iter().zip(&node.pattern) {
-                sub_scaled(&mut tail[row - below], l, &xc);
-            }
+            c0 += CHUNK.min(node.size - c0);
         }
     }
 
-    /// Backward substitution `L^T x = y` through one supernode, last column
-    /// first: `x_c = (y_c - sum_{r > c} L_rc x_r) / L_cc`.
     #[inline(always)]
-    fn backward(&self, node: &Supernode, x: &mut [Lane]) {
+    fn forward_chunk<const Q: usize>(&self, node: &Supernode, c0: usize, x: &mut [Lane]) {
         let (size, rows) = (node.size, node.size + node.pattern.len());
         let val = &self.values[node.offset..node.offset + rows * size];
+        let cols: [&[f64]; Q] = std::array::from_fn(|i| &val[(c0 + i) * rows..(c0 + i + 1) * rows]);
         let (head, tail) = x.split_at_mut(node.start + size);
         let xt = &mut head[node.start..];
         let below = node.start + size;
-        for c in (0..size).rev() {
-            let col = &val[c * rows..(c + 1) * rows];
-            // Two accumulators hide the latency of the multiply-add chain.
-            let (mut a0, mut a1) = ([0.0; LANES], [0.0; LANES]);
-            let (lower, pattern) = (&col[size..], &node.pattern[..]);
-            let pairs = pattern.len() / 2;
-            for t in 0..pairs {
-                add_scaled(&mut a0, lower[2 * t], &tail[pattern[2 * t] - below]);
-                add_scaled(&mut a1, lower[2 * t + 1], &tail[pattern[2 * t + 1] - below]);
+        for i in 0..Q {
+            let xc = scaled(&xt[c0 + i], 1.0 / cols[i][c0 + i]);
+            xt[c0 + i] = xc;
+            for j in i + 1..Q {
+                sub_scaled(&mut xt[c0 + j], cols[i][c0 + j], &xc);
             }
-            if pattern.len() % 2 == 1 {
-                add_scaled(&mut a0, lower[pattern.len() - 1], &tail[pattern[pattern.len() - 1] - below]);
+        }
+        let xs: [Lane; Q] = std::array::from_fn(|i| xt[c0 + i]);
+        for r in c0 + Q..size {
+            sub_combination(&mut xt[r], std::array::from_fn(|i| cols[i][r]), &xs);
+        }
+        for (p, &row) in node.pattern.iter().enumerate() {
+            sub_combination(&mut tail[row - below], std::array::from_fn(|i| cols[i][size + p]), &xs);
+        }
+    }
+
+    /// Backward substitution `L^T x = y` through one supernode, by the same
+    /// chunks in reverse: `x_c = (y_c - sum_{r > c} L_rc x_r) / L_cc`, where
+    /// the rows below the chunk are visited once for all its columns.
+    #[inline(always)]
+    fn backward(&self, node: &Supernode, x: &mut [Lane]) {
+        let last = node.size.saturating_sub(1) / CHUNK * CHUNK;
+        let mut c0 = last;
+        loop {
+            match node.size - c0 {
+                1 => self.backward_chunk::<1>(node, c0, x),
+                2 => self.backward_chunk::<2>(node, c0, x),
+                3 => self.backward_chunk::<3>(node, c0, x),
+                _ => self.backward_chunk::<CHUNK>(node, c0, x),
             }
-            for r in c + 1..size {
-                add_scaled(&mut a1, col[r], &xt[r]);
+            if c0 == 0 {
+                break;
             }
-            let d = 1.0 / col[c];
-            let mut out = xt[c];
+            c0 -= CHUNK;
+        }
+    }
+
+    #[inline(always)]
+    fn backward_chunk<const Q: usize>(&self, node: &Supernode, c0: usize, x: &mut [Lane]) {
+        let (size, rows) = (node.size, node.size + node.pattern.len());
+        let val = &self.values[node.offset..node.offset + rows * size];
+        let cols: [&[f64]; Q] = std::array::from_fn(|i| &val[(c0 + i) * rows..(c0 + i + 1) * rows]);
+        let (head, tail) = x.split_at_mut(node.start + size);
+        let xt = &mut head[node.start..];
+        let below = node.start + size;
+        let mut acc = [[0.0; LANES]; Q];
+        for r in c0 + Q..size {
+            add_products(&mut acc, std::array::from_fn(|i| cols[i][r]), &xt[r]);
+        }
+        for (p, &row) in node.pattern.iter().enumerate() {
+            add_products(&mut acc, std::array::from_fn(|i| cols[i][size + p]), &tail[row - below]);
+        }
+        for i in (0..Q).rev() {
+            let mut v = xt[c0 + i];
             for k in 0..LANES {
-                out[k] = (out[k] - a0[k] - a1[k]) * d;
+                v[k] -= acc[i][k];
             }
-            xt[c] = out;
+            for j in i + 1..Q {
+                let (l, xj) = (cols[i][c0 + j], xt[c0 + j]);
+                for k in 0..LANES {
+                    v[k] -= l * xj[k];
+                }
+            }
+            xt[c0 + i] = scaled(&v, 1.0 / cols[i][c0 + i]);
+        }
+    }
+}
+
+/// Columns of a supernode handled together by the triangular solves.
+const CHUNK: usize = 4;
+
+/// `y -= sum_i l_i x_i`.
+#[inline(always)]
+fn sub_combination<const Q: usize>(y: &mut Lane, l: [f64; Q], xs: &[Lane; Q]) {
+    for k in 0..LANES {
+        let mut s = 0.0;
+        for i in 0..Q {
+            s += l[i] * xs[i][k];
+        }
+        y[k] -= s;
+    }
+}
+
+/// `acc_i += l_i x` for each i.
+#[inline(always)]
+fn add_products<const Q: usize>(acc: &mut [Lane; Q], l: [f64; Q], x: &Lane) {
+    for i in 0..Q {
+        for k in 0..LANES {
+            acc[i][k] += l[i] * x[k];
         }
     }
 }
@@ -206,14 +269,6 @@ fn scaled(x: &Lane, a: f64) -> Lane {
 fn sub_scaled(y: &mut Lane, a: f64, x: &Lane) {
     for k in 0..LANES {
         y[k] -= a * x[k];
-    }
-}
-
-/// `y += a x`.
-#[inline(always)]
-fn add_scaled(y: &mut Lane, a: f64, x: &Lane) {
-    for k in 0..LANES {
-        y[k] += a * x[k];
     }
 }
 

@@ -95,9 +95,9 @@ pub(crate) struct Outcome {
 
 /// Runs block Krylov-Schur on `op` until the `want` largest pairs pass the
 /// estimate and then `accept`, which gets the Ritz values, Ritz vectors `y`
-/// and purified vectors `u = B y / theta` (computed by one more application
-/// of `B`, so that the rounding drift of the Krylov relation over many
-/// restarts does not limit their accuracy).
+/// and purified vectors `u = B y / theta` (first from the Krylov relation;
+/// if they fail, from one more application of `B`: over many restarts the
+/// relation drifts by rounding and limits the accuracy of the former).
 pub(crate) fn solve<O: BlockOperator>(
     op: &O,
     cfg: &Config,
@@ -131,23 +131,35 @@ pub(crate) fn solve<O: BlockOperator>(
         let worst = (0..want).map(estimate).fold(0.0, f64::max);
         if worst <= est_tol {
             let y = ks.ritz_vectors(&ritz, want);
-            let mut u = Mat::zeros(n, want);
-            let t = Instant::now();
-            op.apply(y.as_ref(), &mut u)?;
-            times.apply += t.elapsed().as_secs_f64();
-            columns += want;
-            for j in 0..want {
-                let inv = 1.0 / ritz.theta[j];
-                u.col_as_slice_mut(j).iter_mut().for_each(|x| *x *= inv);
+            // Purified vectors from the Krylov relation (free); if the
+            // explicit residuals reject them, from one more application of
+            // B, which does not depend on the relation's rounding drift.
+            for fresh in [false, true] {
+                let u = if fresh {
+                    let t = Instant::now();
+                    let mut u = Mat::zeros(n, want);
+                    op.apply(y.as_ref(), &mut u)?;
+                    times.apply += t.elapsed().as_secs_f64();
+                    columns += want;
+                    for j in 0..want {
+                        let inv = 1.0 / ritz.theta[j];
+                        u.col_as_slice_mut(j).iter_mut().for_each(|x| *x *= inv);
+                    }
+                    u
+                } else {
+                    ks.purified(&ritz, y.as_ref(), want)
+                };
+                let verdict = accept(&ritz.theta[..want], y.as_ref(), u.as_ref())?;
+                let ratio = verdict.ratios.iter().copied().fold(0.0, f64::max);
+                if ratio <= 1.0 {
+                    times.other += clock.elapsed().as_secs_f64();
+                    return Ok(Outcome { vectors: verdict.vectors, restarts: restart, columns, timings: times });
+                }
+                if fresh {
+                    // The estimate was too optimistic (uneven masses): tighten it.
+                    est_tol = (est_tol * (0.5 / ratio).clamp(1e-4, 0.5)).max(1e-15);
+                }
             }
-            let verdict = accept(&ritz.theta[..want], y.as_ref(), u.as_ref())?;
-            let ratio = verdict.ratios.iter().copied().fold(0.0, f64::max);
-            if ratio <= 1.0 {
-                times.other += clock.elapsed().as_secs_f64();
-                return Ok(Outcome { vectors: verdict.vectors, restarts: restart, columns, timings: times });
-            }
-            // The estimate was too optimistic (uneven masses): tighten it.
-            est_tol = (est_tol * (0.5 / ratio).clamp(1e-4, 0.5)).max(1e-15);
         }
         if restart == cfg.max_restarts {
             let converged = (0..want).filter(|&j| estimate(j) <= est_tol).count();
@@ -305,6 +317,22 @@ impl KrylovSchur {
             1.0,
         );
         y
+    }
+
+    /// Purified vectors `u_j = y_j + Q G s_j / theta_j = B y_j / theta_j`
+    /// from the Krylov relation.
+    fn purified(&self, ritz: &Ritz, y: MatRef<'_, f64>, want: usize) -> Mat<f64> {
+        let (s, b) = (self.s, self.b);
+        let mut gs = Mat::zeros(b, want);
+        let sw = ritz.vectors.as_ref().subcols(0, want);
+        matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(0, s), sw, 1.0, Par::Seq);
+        for j in 0..want {
+            let inv = 1.0 / ritz.theta[j];
+            gs.col_as_slice_mut(j).iter_mut().for_each(|x| *x *= inv);
+        }
+        let mut u = y.to_owned();
+        tall::mul(u.as_mut(), Accum::Add, self.v.as_ref().subcols(s, b), gs.as_ref(), 1.0);
+        u
     }
 
     /// Thick restart keeping the first `p` Ritz pairs.
