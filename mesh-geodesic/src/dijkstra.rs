@@ -128,6 +128,9 @@ pub(crate) fn propagate(mesh: &TriMesh, seeds: &[(VertexId, u32)], max_distance:
         }
         let (pv, label) = (p[v.idx()], source_index[v.idx()]);
         for_each_neighbor(conn, v, |w| {
+            if distance[w.idx()] <= d {
+                return; // settled (or about to be): no shorter path through v
+            }
             let nd = d + pv.distance(p[w.idx()]);
             if nd < distance[w.idx()] {
                 distance[w.idx()] = nd;

@@ -114,33 +114,32 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
     };
     let n = mesh.vertex_count();
     let mut front = Front::new(mesh, options)?;
-    let mut out = GeodesicVoronoi {
-        seeds: Vec::with_capacity(count),
-        distance: vec![f64::INFINITY; n],
-        region: vec![u32::MAX; n],
-        radii: Vec::with_capacity(count),
-    };
+    // Fields in the front's own vertex numbering.
+    let (mut distance, mut region) = (vec![f64::INFINITY; n], vec![u32::MAX; n]);
+    let usable = front.to_internal(&usable);
+    let (mut seeds, mut radii) = (Vec::with_capacity(count), Vec::with_capacity(count));
     let mut next = Some(start);
     while let Some(seed) = next {
-        let label = out.seeds.len() as u32;
-        out.seeds.push(seed);
-        front.add(seed, label, &mut out.distance, &mut out.region);
+        let label = seeds.len() as u32;
+        seeds.push(seed);
+        front.add(seed, label, &mut distance, &mut region);
         // The farthest usable vertex; unreached components first.
         let farthest =
-            (0..n).filter(|&v| usable[v]).max_by(|&a, &b| out.distance[a].total_cmp(&out.distance[b]).then(b.cmp(&a)));
-        let radius = farthest.map_or(0.0, |v| out.distance[v]);
-        out.radii.push(radius);
+            (0..n).filter(|&v| usable[v]).max_by(|&a, &b| distance[a].total_cmp(&distance[b]).then(b.cmp(&a)));
+        let radius = farthest.map_or(0.0, |v| distance[v]);
+        radii.push(radius);
         next = match farthest {
-            Some(v) if out.seeds.len() < count && radius > 0.0 => Some(VertexId::new(v)),
+            Some(v) if seeds.len() < count && radius > 0.0 => Some(front.vertex_at(v)),
             _ => None,
         };
     }
-    // The pruned fronts only approximate the multi-source march near the
-    // region borders: return the fresh field and regions of the samples.
-    if let Front::Fmm(fmm, _) = &front {
-        (out.distance, out.region) = fmm.distance_and_labels(&out.seeds)?;
-    }
-    Ok(out)
+    let (distance, region) = match &front {
+        // The pruned fronts only approximate the multi-source march near the
+        // region borders: return the fresh field and regions of the samples.
+        Front::Fmm(fmm, _) => fmm.distance_and_labels(&seeds)?,
+        Front::Dijkstra(..) => (distance, region),
+    };
+    Ok(GeodesicVoronoi { seeds, distance, region, radii })
 }
 
 /// Incremental front propagation for either metric.
@@ -165,7 +164,24 @@ impl<'a> Front<'a> {
         })
     }
 
-    /// Lowers `distance` and relabels `region` where `seed` is closer.
+    /// A per-vertex mask in the front's numbering.
+    fn to_internal(&self, mask: &[bool]) -> Vec<bool> {
+        match self {
+            Front::Fmm(fmm, _) => (0..mask.len()).map(|i| mask[fmm.vertex_at(i).idx()]).collect(),
+            Front::Dijkstra(..) => mask.to_vec(),
+        }
+    }
+
+    /// The mesh vertex at an index of the front's numbering.
+    fn vertex_at(&self, i: usize) -> VertexId {
+        match self {
+            Front::Fmm(fmm, _) => fmm.vertex_at(i),
+            Front::Dijkstra(..) => VertexId::new(i),
+        }
+    }
+
+    /// Lowers `distance` and relabels `region` (in the front's numbering)
+    /// where `seed` is closer.
     fn add(&mut self, seed: VertexId, label: u32, distance: &mut Vec<f64>, region: &mut Vec<u32>) {
         match self {
             Front::Fmm(fmm, march) => march.run(fmm, &[(seed, label)], f64::INFINITY, distance, region),

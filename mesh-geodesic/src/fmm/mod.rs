@@ -38,7 +38,7 @@ use crate::error::{GeodesicError, Result};
 use crate::support::{validate_length, validate_sources, HeapEntry};
 use local::{advance_curvature, circular_front, mean_radius, plane_wave, Circular};
 pub use stencil::FmmStats;
-use stencil::{Stencils, EDGE, TRIANGLE};
+use stencil::Stencils;
 
 /// The local solver of the Eikonal equation in one triangle.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -141,12 +141,9 @@ impl FastMarching {
         }
         let curved = options.update == FmmUpdate::CurvedFront;
         let stencils = Stencils::new(mesh, options.split_obtuse, options.max_unfold, curved);
-        Ok(Self {
-            stencils,
-            weights: options.weights.clone(),
-            max_distance: options.max_distance,
-            update: options.update,
-        })
+        // Weights in the internal (breadth-first) numbering.
+        let weights = options.weights.as_ref().map(|w| stencils.order.iter().map(|&v| w[v as usize]).collect());
+        Ok(Self { stencils, weights, max_distance: options.max_distance, update: options.update })
     }
 
     /// Number of vertices of the mesh this was built for.
@@ -188,7 +185,18 @@ impl FastMarching {
                 *l = u32::MAX;
             }
         }
-        Ok((distance, labels))
+        Ok((self.to_vertex_order(&distance), self.to_vertex_order(&labels)))
+    }
+
+    /// A per-vertex field from the internal numbering to the mesh's.
+    pub(crate) fn to_vertex_order<T: Copy>(&self, internal: &[T]) -> Vec<T> {
+        let rank = &self.stencils.rank;
+        (0..rank.len()).map(|v| internal[rank[v] as usize]).collect()
+    }
+
+    /// The mesh vertex at an internal index.
+    pub(crate) fn vertex_at(&self, internal: usize) -> VertexId {
+        VertexId(self.stencils.order[internal])
     }
 
     #[inline]
@@ -236,7 +244,9 @@ impl March {
     /// lowering only values that the new front strictly improves, so that a
     /// run on top of an existing field computes the distance to the union of
     /// the old and new sources, pruned to where the new ones are closer.
-    /// Seeds must be in range. O(V log V) for the region touched.
+    /// `distance` and `labels` are in the internal (breadth-first)
+    /// numbering; seeds are mesh vertices, in range. O(V log V) for the
+    /// region touched.
     pub(crate) fn run(
         &mut self,
         fmm: &FastMarching,
@@ -253,11 +263,12 @@ impl March {
         let run = self.run;
         self.heap.clear();
         for &(s, label) in seeds {
-            if distance[s.idx()] > 0.0 || labels[s.idx()] == u32::MAX {
-                distance[s.idx()] = 0.0;
-                labels[s.idx()] = label;
-                self.kappa[s.idx()] = f64::INFINITY;
-                self.heap.push(HeapEntry { distance: 0.0, vertex: s.0 });
+            let i = fmm.stencils.rank[s.idx()] as usize;
+            if distance[i] > 0.0 || labels[i] == u32::MAX {
+                distance[i] = 0.0;
+                labels[i] = label;
+                self.kappa[i] = f64::INFINITY;
+                self.heap.push(HeapEntry { distance: 0.0, vertex: i as u32 });
             }
         }
         while let Some(HeapEntry { distance: d, vertex: v }) = self.heap.pop() {
@@ -302,15 +313,13 @@ impl March {
         let p = fmm.weight(x);
         let k_x = fmm.stencils.curvature[x];
         let mut best = (f64::INFINITY, 0.0, labels[v]);
-        if e.flags & EDGE != 0 {
-            let len = e.g_self.sqrt();
-            let u = d + p * len;
-            if u < distance[x] {
-                best = (u, advance_curvature(self.kappa[v], len) - k_x * len, labels[v]);
-            }
+        let len = e.g_self.sqrt();
+        let u = d + p * len;
+        if u < distance[x] {
+            best = (u, advance_curvature(self.kappa[v], len) - k_x * len, labels[v]);
         }
         let o = e.other as usize;
-        if e.flags & TRIANGLE == 0 || self.stamp[o] != self.run {
+        if self.stamp[o] != self.run {
             return best;
         }
         let u_o = distance[o];

@@ -9,15 +9,12 @@ use mesh_core::{Connectivity, FaceId, HalfedgeId, TriMesh, VertexId, VertexKind}
 /// Relative tolerance below which a corner counts as degenerate.
 const DEGENERATE: f64 = 1e-12;
 
-/// An accepted vertex may update its target along their (real or virtual)
-/// common edge.
-pub(crate) const EDGE: u8 = 1;
-/// Triangle update once the other known vertex is accepted too.
-pub(crate) const TRIANGLE: u8 = 2;
-
 /// A local stencil seen from one of its two known vertices `v`: the target
 /// `x`, the other known vertex `o`, and the Gram matrix of `e_v = v - x` and
-/// `e_o = o - x` (in the unfolded plane for virtual triangles).
+/// `e_o = o - x` (in the unfolded plane for virtual triangles). Once `v` is
+/// accepted it updates `x` along their (real or virtual) edge, and through
+/// the triangle once `o` is accepted too (the local solvers refuse
+/// degenerate triangles). 32 bytes.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Entry {
     pub target: u32,
@@ -25,7 +22,6 @@ pub(crate) struct Entry {
     pub g_self: f64,
     pub g_other: f64,
     pub g_dot: f64,
-    pub flags: u8,
 }
 
 /// Statistics of the preprocessing of a [`super::FastMarching`] object.
@@ -43,40 +39,44 @@ pub struct FmmStats {
 /// part in as a known vertex are `entries[offsets[v]..offsets[v + 1]]`.
 #[derive(Debug, Clone)]
 pub(crate) struct Stencils {
-    pub offsets: Vec<u32>,
+    /// The vertices in breadth-first order (internal index -> vertex): fronts
+    /// then sweep memory mostly in order.
+    pub order: Vec<u32>,
+    /// Internal index of each vertex (the inverse of `order`).
+    pub rank: Vec<u32>,
+    pub offsets: Vec<usize>,
     pub entries: Vec<Entry>,
     pub stats: FmmStats,
-    /// Gaussian curvature per vertex (zeros unless asked for).
+    /// Gaussian curvature per internal index (zeros unless asked for).
     pub curvature: Vec<f64>,
 }
 
 impl Stencils {
     /// Builds the stencils of every corner: its own triangle, and when the
     /// angle there is obtuse and `split` holds, two virtual acute triangles
-    /// through the vertex found by unfolding. Two passes over the corners
-    /// (count, then fill in place), O(F) plus the unfolding.
+    /// through the vertex found by unfolding. One pass over the corners
+    /// (curvature, obtuse splits), then the stencils written vertex by vertex
+    /// in breadth-first order from each vertex's faces, with vertices
+    /// renumbered in that order. O(F) plus the unfolding.
     pub fn new(mesh: &TriMesh, split: bool, max_unfold: usize, curvature: bool) -> Self {
         let conn = mesh.connectivity();
         let p = mesh.positions();
         let n = mesh.vertex_count();
         let mut stats = FmmStats::default();
-        // Angle sums and barycentric areas for the curvature, from the same
-        // Gram matrices.
-        let (mut angle_sum, mut area) = if curvature { (vec![0.0; n], vec![0.0; n]) } else { (Vec::new(), Vec::new()) };
-        // Pass 1: classify corners, unfold the obtuse ones, count entries.
-        let mut offsets = vec![0u32; n + 1];
-        let mut virtual_stencils: Vec<(u32, [u32; 2], [f64; 2], f64)> = Vec::new();
+        // Angle sums and barycentric areas for the curvature.
+        let (mut angles, mut area) =
+            if curvature { (vec![AngleSum::default(); n], vec![0.0; n]) } else { (Vec::new(), Vec::new()) };
+        // Virtual stencils, keyed by the vertex they are registered under.
+        let mut virtual_stencils: Vec<(u32, Entry)> = Vec::new();
         for f in mesh.face_ids() {
             let tri = mesh.faces()[f.idx()];
             for k in 0..3 {
                 let (x, x1, x2) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                offsets[x1 as usize + 1] += 1;
-                offsets[x2 as usize + 1] += 1;
                 let [g11, g22, g12] = gram(p, x, x1, x2);
                 let det = g11 * g22 - g12 * g12;
                 if curvature {
                     let root = det.max(0.0).sqrt();
-                    angle_sum[x as usize] += root.atan2(g12);
+                    angles[x as usize].add(g12, root);
                     area[x as usize] += root / 6.0;
                 }
                 if !(det > DEGENERATE * g11 * g22) {
@@ -89,49 +89,130 @@ impl Stencils {
                         let l1 = g11.sqrt();
                         let (q1, q2) = (DVec2::new(l1, 0.0), DVec2::new(g12 / l1, det.sqrt() / l1));
                         let gc = q.length_squared();
-                        virtual_stencils.push((x, [x1, c.0], [g11, gc], q1.dot(q)));
-                        virtual_stencils.push((x, [c.0, x2], [gc, g22], q.dot(q2)));
-                        for v in [x1, c.0, c.0, x2] {
-                            offsets[v as usize + 1] += 1;
+                        for (v, other, g_self, g_other, g_dot) in [
+                            (x1, c.0, g11, gc, q1.dot(q)),
+                            (c.0, x1, gc, g11, q1.dot(q)),
+                            (c.0, x2, gc, g22, q.dot(q2)),
+                            (x2, c.0, g22, gc, q.dot(q2)),
+                        ] {
+                            virtual_stencils.push((v, Entry { target: x, other, g_self, g_other, g_dot }));
                         }
                     }
                 }
             }
         }
-        for v in 0..n {
-            offsets[v + 1] += offsets[v];
+        let (order, rank) = breadth_first_order(mesh);
+        for (v, e) in &mut virtual_stencils {
+            *v = rank[*v as usize];
+            e.target = rank[e.target as usize];
+            e.other = rank[e.other as usize];
         }
-        // Pass 2: fill each vertex's bucket.
-        let mut fill: Vec<u32> = offsets[..n].to_vec();
-        let blank = Entry { target: 0, other: 0, g_self: 0.0, g_other: 0.0, g_dot: 0.0, flags: 0 };
-        let mut entries = vec![blank; offsets[n] as usize];
-        let mut put = |x: u32, [v1, v2]: [u32; 2], [g1, g2]: [f64; 2], g12: f64, flags: u8| {
-            for (v, other, g_self, g_other) in [(v1, v2, g1, g2), (v2, v1, g2, g1)] {
-                entries[fill[v as usize] as usize] = Entry { target: x, other, g_self, g_other, g_dot: g12, flags };
-                fill[v as usize] += 1;
+        virtual_stencils.sort_unstable_by_key(|(v, e)| (*v, e.target, e.other));
+        // Each vertex's stencils: in every face around it, those of the two
+        // other corners, then its virtual ones.
+        let mut offsets = Vec::with_capacity(n + 1);
+        let mut entries = Vec::with_capacity(6 * mesh.face_count() + virtual_stencils.len());
+        let mut next_virtual = virtual_stencils.iter().peekable();
+        offsets.push(0usize);
+        for (i, &v) in order.iter().enumerate() {
+            for &h in conn.outgoing(VertexId(v)) {
+                let tri = mesh.faces()[h.face().idx()];
+                let c = h.corner();
+                // v is x2 of corner c + 1 and x1 of corner c + 2.
+                let (a, b) = (tri[(c + 1) % 3], tri[(c + 2) % 3]);
+                let (ra, rb) = (rank[a as usize], rank[b as usize]);
+                let [ga_b, ga_v, gdot] = gram(p, a, b, v);
+                entries.push(Entry { target: ra, other: rb, g_self: ga_v, g_other: ga_b, g_dot: gdot });
+                let [gb_v, gb_a, gdot] = gram(p, b, v, a);
+                entries.push(Entry { target: rb, other: ra, g_self: gb_v, g_other: gb_a, g_dot: gdot });
             }
+            while let Some((_, e)) = next_virtual.next_if(|(w, _)| *w as usize == i) {
+                entries.push(*e);
+            }
+            offsets.push(entries.len());
+        }
+        let curvature = if curvature {
+            let angle_sum: Vec<f64> = angles.iter().map(AngleSum::total).collect();
+            let k = smoothed_curvature(mesh, &angle_sum, &area);
+            order.iter().map(|&v| k[v as usize]).collect()
+        } else {
+            vec![0.0; n]
         };
-        for tri in mesh.faces() {
-            for k in 0..3 {
-                let (x, x1, x2) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                let [g11, g22, g12] = gram(p, x, x1, x2);
-                let det = g11 * g22 - g12 * g12;
-                let flags = if det > DEGENERATE * g11 * g22 { EDGE | TRIANGLE } else { EDGE };
-                put(x, [x1, x2], [g11, g22], g12, flags);
-            }
-        }
-        for (x, v, g, g12) in virtual_stencils {
-            put(x, v, g, g12, EDGE | TRIANGLE);
-        }
-        let curvature = if curvature { smoothed_curvature(mesh, &angle_sum, &area) } else { vec![0.0; n] };
-        Self { offsets, entries, stats, curvature }
+        Self { order, rank, offsets, entries, stats, curvature }
     }
 
     /// The stencils in which `v` is a known vertex.
     #[inline]
     pub fn of(&self, v: u32) -> &[Entry] {
-        &self.entries[self.offsets[v as usize] as usize..self.offsets[v as usize + 1] as usize]
+        &self.entries[self.offsets[v as usize]..self.offsets[v as usize + 1]]
     }
+}
+
+/// A sum of angles in [0, pi] kept as the product of unit complex numbers
+/// e^{i theta} and a count of its turns, so that one `atan2` per vertex
+/// replaces one per corner: multiplying by e^{i theta}, theta in [0, pi],
+/// passes the argument pi exactly when the imaginary part goes from >= 0 to
+/// < 0.
+#[derive(Debug, Clone, Copy)]
+struct AngleSum {
+    re: f64,
+    im: f64,
+    turns: u32,
+}
+
+impl Default for AngleSum {
+    fn default() -> Self {
+        Self { re: 1.0, im: 0.0, turns: 0 }
+    }
+}
+
+impl AngleSum {
+    /// Adds the angle of the vector (cos-like, sin-like) = (`c`, `s`), s >= 0.
+    #[inline]
+    fn add(&mut self, c: f64, s: f64) {
+        let (re, im) = (self.re * c - self.im * s, self.re * s + self.im * c);
+        let scale = re.abs().max(im.abs());
+        if !(scale > 0.0 && scale.is_finite()) {
+            return; // a zero-length edge: no angle
+        }
+        if self.im >= 0.0 && im < 0.0 {
+            self.turns += 1;
+        }
+        (self.re, self.im) = (re / scale, im / scale);
+    }
+
+    fn total(&self) -> f64 {
+        self.im.atan2(self.re) + std::f64::consts::TAU * f64::from(self.turns)
+    }
+}
+
+/// Vertices in breadth-first order over the edges, one component after
+/// the other (isolated vertices last, in index order), and the inverse
+/// permutation. O(V + E).
+fn breadth_first_order(mesh: &TriMesh) -> (Vec<u32>, Vec<u32>) {
+    let conn = mesh.connectivity();
+    let n = mesh.vertex_count();
+    let mut rank = vec![u32::MAX; n];
+    let mut order = Vec::with_capacity(n);
+    for root in 0..n {
+        if rank[root] != u32::MAX {
+            continue;
+        }
+        rank[root] = order.len() as u32;
+        order.push(root as u32);
+        let mut head = order.len() - 1;
+        while head < order.len() {
+            let v = VertexId(order[head]);
+            head += 1;
+            crate::support::for_each_neighbor(conn, v, |w| {
+                if rank[w.idx()] == u32::MAX {
+                    rank[w.idx()] = order.len() as u32;
+                    order.push(w.0);
+                }
+            });
+        }
+    }
+    (order, rank)
 }
 
 /// Gram matrix entries |e1|^2, |e2|^2, e1 . e2 of the corner x with edges
@@ -287,6 +368,20 @@ mod tests {
             }
         }
         assert!(split > 10, "{split}");
+    }
+
+    #[test]
+    fn angle_sums_count_turns() {
+        let mut a = AngleSum::default();
+        let angles = [3.0, 2.5, 1.0, 3.1, 0.2, 2.9, 0.0, std::f64::consts::PI];
+        for t in angles {
+            a.add(7.0 * t.cos(), 7.0 * t.sin());
+        }
+        assert!((a.total() - angles.iter().sum::<f64>()).abs() < 1e-12);
+        let mut b = AngleSum::default();
+        b.add(0.0, 0.0);
+        b.add(0.5f64.cos(), 0.5f64.sin());
+        assert!((b.total() - 0.5).abs() < 1e-15);
     }
 
     #[test]
