@@ -6,7 +6,7 @@
 use std::sync::Arc;
 
 use mesh_core::{glam::DVec3, shapes, TriMesh};
-use mesh_wavelet::{decay_rate, FilterBank, Hierarchy, Multiresolution, Scheme, WaveletKind};
+use mesh_wavelet::{decay_rate, FilterBank, Multiresolution, Scheme, WaveletKind};
 
 /// The icosahedron split `levels` times with new vertices on the unit sphere.
 fn sphere(levels: u32) -> TriMesh {
@@ -41,7 +41,11 @@ fn bumpy(levels: u32) -> TriMesh {
 }
 
 fn main() {
-    let shapes: Vec<(&str, TriMesh)> = vec![("sphere", sphere(5)), ("torus", torus(4)), ("bumpy", bumpy(5))];
+    let mut shapes: Vec<(&str, TriMesh)> = vec![("sphere", sphere(5)), ("torus", torus(4)), ("bumpy", bumpy(5))];
+    let holes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/cgal_holes.off");
+    if let Ok(data) = mesh_io::read(&holes) {
+        shapes.push(("cgal_holes.off", data.mesh));
+    }
     for (name, mesh) in &shapes {
         let h = Arc::new(mesh_wavelet::detect(mesh, &Default::default()).unwrap());
         println!(
@@ -72,5 +76,4 @@ fn main() {
             }
         }
     }
-    let _ = Hierarchy::from_base(3, &[[0, 1, 2]], 1);
 }

@@ -7,8 +7,8 @@
 //! that split the edges of K^j. Each odd vertex knows its parent edge. Built
 //! either top-down from a base mesh ([`Hierarchy::from_base`], the order of
 //! [`mesh_core::shapes::midpoint_subdivide`]: one odd vertex per
-//! [`Connectivity`] edge in edge order, faces `4f..4f+3`) or bottom-up from a
-//! fine mesh by [`crate::detect`], in which case it remembers where every
+//! [`mesh_core::Connectivity`] edge in edge order, faces `4f..4f+3`) or bottom-up from a
+//! fine mesh by [`crate::detect()`], in which case it remembers where every
 //! vertex came from.
 
 use std::sync::OnceLock;

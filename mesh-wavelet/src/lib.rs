@@ -15,7 +15,12 @@
 //! | [`matrices`] | the same as `sprs` matrices; the Gram matrix of eq. 2.36 | eq. 2.36 |
 //! | [`multires`] | [`Multiresolution`]: base + coefficients, LOD, editing, statistics | eq. 2.39 |
 //! | [`compress`](mod@compress) | keep the largest coefficients, RMS / max error | |
+//! | [`scheme`] | [`Scheme`] (midpoint, Loop, butterfly) and [`WaveletKind`] (lazy, lifted) | |
 //! | [`error`] | [`WaveletError`] | |
+//!
+//! Private: `topology`, a lean half-edge structure numbered like
+//! `mesh_core::Connectivity` (faster to build; see the README), and `update`,
+//! the least-squares weights of the lifted wavelet.
 //!
 //! ```
 //! use mesh_wavelet::{subdivide, Multiresolution, Options, Scheme, CompressOptions};
@@ -69,3 +74,8 @@ pub use scheme::{Scheme, WaveletKind};
 pub use subdivide::subdivide;
 
 pub use glam;
+
+/// The README's example, compiled and run as a doc-test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -1,5 +1,5 @@
 //! Subdivision masks: where the odd vertex of an edge goes and how even
-//! vertices move, for each [`Scheme`](crate::Scheme), as sparse rows over the
+//! vertices move, for each [`crate::Scheme`], as sparse rows over the
 //! vertices of K^j.
 //!
 //! All masks are affine (weights sum to one), so every scheme commutes with

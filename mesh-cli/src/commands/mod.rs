@@ -9,4 +9,5 @@ pub mod info;
 pub mod param;
 pub mod render;
 pub mod report;
+pub mod spectral;
 pub mod wavelet;
