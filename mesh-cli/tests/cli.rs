@@ -143,11 +143,21 @@ fn report_runs_every_analysis_on_a_torus() {
     assert_eq!(s["geodesic"]["unreachable"], 0);
     assert_eq!(s["parameterization"]["bijective"], true);
     assert!(s["wavelet"]["levels"].as_u64().unwrap() >= 1);
-    for f in ["mesh.ply", "uv.obj", "geodesic_path.obj", "mean.png", "distance.png"] {
+    // Spectrum: 0, then the first rotation mode around the axis, about
+    // 1/R^2 = 0.25, twice (cos and sin); residuals at solver tolerance.
+    let lambda: Vec<f64> =
+        s["spectral"]["eigenvalues"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(lambda.len(), 20);
+    assert!(
+        lambda[0].abs() < 1e-9 && (lambda[1] - lambda[2]).abs() < 1e-8 && (0.2..0.3).contains(&lambda[1]),
+        "{lambda:?}"
+    );
+    assert!(s["spectral"]["max_residual"].as_f64().unwrap() < 1e-8);
+    for f in ["mesh.ply", "uv.obj", "geodesic_path.obj", "mean.png", "distance.png", "harmonic1.png"] {
         assert!(out.join(f).is_file(), "{f}");
     }
     let ply = mesh_io_fields(&out.join("mesh.ply"));
-    for name in ["gaussian", "mean", "k1", "k2", "distance"] {
+    for name in ["gaussian", "mean", "k1", "k2", "distance", "harmonic1", "hks"] {
         assert!(ply.contains(&name.to_owned()), "{name} missing from {ply:?}");
     }
 }
