@@ -62,3 +62,8 @@ pub use mesh::TriMesh;
 pub use faer;
 pub use glam;
 pub use sprs;
+
+/// The README's example, compiled and run as a doc-test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
