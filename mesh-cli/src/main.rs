@@ -39,6 +39,8 @@ enum Command {
     Param(commands::param::Args),
     /// Geodesic distance from source vertices (heat, fmm, dijkstra), to a PLY file; optional path to an OBJ polyline.
     Geodesic(commands::geodesic::Args),
+    /// Tessellates an exact NURBS surface, with its exact curvatures, to a PLY file.
+    Nurbs(commands::nurbs::Args),
     /// Smallest Laplacian eigenpairs to a PLY file; spectral filter, compress and heat kernel signature.
     Spectral(commands::spectral::Args),
     /// 4-to-1 subdivision: midpoint, Loop or modified butterfly.
@@ -78,6 +80,7 @@ fn main() {
         Command::Curvature(args) => commands::curvature::run(args),
         Command::Param(args) => commands::param::run(args),
         Command::Geodesic(args) => commands::geodesic::run(args),
+        Command::Nurbs(args) => commands::nurbs::run(args),
         Command::Spectral(args) => commands::spectral::run(args),
         Command::Subdivide(args) => commands::wavelet::run_subdivide(args),
         Command::Wavelet(args) => commands::wavelet::run(args),

@@ -51,6 +51,16 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> CliResult<()> {
     Ok(())
 }
 
+/// Write options of every per-vertex field file: binary little-endian PLY
+/// with positions and properties as `double`.
+pub fn binary_ply() -> mesh_io::WriteOptions {
+    mesh_io::WriteOptions {
+        format: Some(mesh_io::Format::Ply),
+        ply: mesh_io::PlyOptions { encoding: mesh_io::PlyEncoding::BinaryLittleEndian, ..Default::default() },
+        ..Default::default()
+    }
+}
+
 /// Replaces non-finite numbers by `None` so that JSON stays valid.
 pub fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)

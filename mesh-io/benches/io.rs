@@ -36,7 +36,10 @@ fn grid(n: u32) -> MeshData {
 
 /// Every format and encoding, with a label.
 fn cases() -> Vec<(&'static str, Format, WriteOptions)> {
-    let ply = |encoding| WriteOptions { ply: PlyOptions { encoding, double: true }, ..Default::default() };
+    let ply = |encoding| WriteOptions {
+        ply: PlyOptions { encoding, double: true, ..Default::default() },
+        ..Default::default()
+    };
     let stl = |stl| WriteOptions { stl, ..Default::default() };
     vec![
         ("obj", Format::Obj, WriteOptions::default()),

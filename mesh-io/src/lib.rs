@@ -58,5 +58,5 @@ pub use data::{MeshData, MeshView, ReadReport};
 pub use error::{IoError, Location, Result};
 pub use file::{read, read_from, read_with, write, write_polylines, write_to, ReadOptions, WriteOptions};
 pub use format::Format;
-pub use ply::{PlyEncoding, PlyOptions};
+pub use ply::{PlyEncoding, PlyOptions, PlyUvNames};
 pub use stl::StlEncoding;

@@ -44,11 +44,33 @@ pub struct PlyOptions {
     /// Positions, normals and texture coordinates as `double` (exact) rather
     /// than `float`. Scalars are always `double`.
     pub double: bool,
+    /// Property names of per-vertex texture coordinates.
+    pub uv_names: PlyUvNames,
 }
 
 impl Default for PlyOptions {
     fn default() -> Self {
-        Self { encoding: PlyEncoding::default(), double: true }
+        Self { encoding: PlyEncoding::default(), double: true, uv_names: PlyUvNames::default() }
+    }
+}
+
+/// Names of the per-vertex texture coordinate properties written; the
+/// reader accepts both (and `s t`, `texture_s texture_t`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PlyUvNames {
+    /// `texture_u texture_v` (MeshLab's names).
+    #[default]
+    TextureUv,
+    /// `u v` (surface parameters, e.g. of a NURBS tessellation).
+    Uv,
+}
+
+impl PlyUvNames {
+    fn names(self) -> &'static [&'static str] {
+        match self {
+            Self::TextureUv => &["texture_u", "texture_v"],
+            Self::Uv => &["u", "v"],
+        }
     }
 }
 
@@ -754,7 +776,7 @@ impl Layout {
             }
         };
         add(view.normals.is_some(), &["nx", "ny", "nz"], real);
-        add(view.uvs.is_some() && view.corner_uvs.is_none(), &["texture_u", "texture_v"], real);
+        add(view.uvs.is_some() && view.corner_uvs.is_none(), options.uv_names.names(), real);
         add(view.colors.is_some(), &["red", "green", "blue", "alpha"], Scalar::U8);
         for (name, _) in &view.scalars {
             let valid = !name.is_empty() && name.bytes().all(|b| b.is_ascii_graphic());
@@ -961,7 +983,7 @@ property float z\nelement face 2\nproperty list uchar uint vertex_indices\nend_h
         let d = read(ASCII).unwrap();
         for encoding in [PlyEncoding::BinaryLittleEndian, PlyEncoding::BinaryBigEndian, PlyEncoding::Ascii] {
             let mut out = Vec::new();
-            write(&mut out, &d.view(), &PlyOptions { encoding, double: true }).unwrap();
+            write(&mut out, &d.view(), &PlyOptions { encoding, double: true, ..Default::default() }).unwrap();
             let back = read(&out).unwrap();
             assert_eq!(back.mesh, d.mesh);
             assert_eq!(back.colors, d.colors);

@@ -172,7 +172,7 @@ fn valid(format: Format, variant: usize) -> &'static Vec<u8> {
                 let encoding = [PlyEncoding::Ascii, PlyEncoding::BinaryLittleEndian, PlyEncoding::BinaryBigEndian];
                 let stl = [StlEncoding::Ascii, StlEncoding::Binary];
                 let options = WriteOptions {
-                    ply: PlyOptions { encoding: encoding[variant.min(2)], double: true },
+                    ply: PlyOptions { encoding: encoding[variant.min(2)], double: true, ..Default::default() },
                     stl: stl[variant.min(1)],
                     ..Default::default()
                 };

@@ -56,7 +56,8 @@ fn off_keeps_positions_normals_colors_uvs() {
 fn ply_every_encoding_keeps_everything_bit_exact() {
     let d = irrational(6);
     for encoding in [PlyEncoding::Ascii, PlyEncoding::BinaryLittleEndian, PlyEncoding::BinaryBigEndian] {
-        let options = WriteOptions { ply: PlyOptions { encoding, double: true }, ..Default::default() };
+        let options =
+            WriteOptions { ply: PlyOptions { encoding, double: true, ..Default::default() }, ..Default::default() };
         let back = round_trip(&d, "a.ply", &options);
         let bits = |m: &MeshData| m.mesh.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
         assert_eq!(bits(&back), bits(&d), "{encoding:?}");

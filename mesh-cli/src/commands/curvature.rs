@@ -14,7 +14,7 @@ use mesh_io::MeshView;
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
 
 /// Arguments of `mesh curvature`.
 #[derive(Debug, clap::Args)]
@@ -206,11 +206,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         .with_scalar("curvedness", &curvedness)
         .with_scalar("valid", &valid);
     ensure_parent(&args.out)?;
-    let write = mesh_io::WriteOptions {
-        format: Some(mesh_io::Format::Ply),
-        ply: mesh_io::PlyOptions { encoding: mesh_io::PlyEncoding::BinaryLittleEndian, double: true },
-        ..Default::default()
-    };
+    let write = binary_ply();
     mesh_io::write(&args.out, view, &write)?;
 
     let keep_k: Vec<bool> = k.status.iter().map(|s| *s == VertexStatus::Valid).collect();

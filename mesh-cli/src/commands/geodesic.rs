@@ -16,7 +16,7 @@ use mesh_io::MeshView;
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
 
 /// Arguments of `mesh geodesic`.
 #[derive(Debug, clap::Args)]
@@ -180,11 +180,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     let (d, precompute, solve) = distance(args, mesh, &sources)?;
 
     ensure_parent(&args.out)?;
-    let write = mesh_io::WriteOptions {
-        format: Some(mesh_io::Format::Ply),
-        ply: mesh_io::PlyOptions { encoding: mesh_io::PlyEncoding::BinaryLittleEndian, double: true },
-        ..Default::default()
-    };
+    let write = binary_ply();
     mesh_io::write(&args.out, MeshView::new(mesh).with_scalar("distance", &d), &write)?;
 
     let (path, trace_ms) = match (args.path_from, &args.path_out) {

@@ -6,6 +6,7 @@ pub mod curvature;
 pub mod generate;
 pub mod geodesic;
 pub mod info;
+pub mod nurbs;
 pub mod param;
 pub mod render;
 pub mod report;

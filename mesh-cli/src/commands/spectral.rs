@@ -24,7 +24,7 @@ use mesh_spectral::{
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
 
 /// Arguments of `mesh spectral`.
 #[derive(Debug, clap::Args)]
@@ -294,14 +294,6 @@ fn ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
 
-fn ply() -> mesh_io::WriteOptions {
-    mesh_io::WriteOptions {
-        format: Some(mesh_io::Format::Ply),
-        ply: mesh_io::PlyOptions { encoding: mesh_io::PlyEncoding::BinaryLittleEndian, double: true },
-        ..Default::default()
-    }
-}
-
 /// Writes per-vertex fields named `prefix0`, `prefix1`, ... to a binary PLY.
 fn write_fields(path: &std::path::Path, mesh: &TriMesh, prefix: &str, fields: &[&[f64]]) -> CliResult<()> {
     let names: Vec<String> = (0..fields.len()).map(|i| format!("{prefix}{i}")).collect();
@@ -310,7 +302,7 @@ fn write_fields(path: &std::path::Path, mesh: &TriMesh, prefix: &str, fields: &[
         view = view.with_scalar(name, values);
     }
     ensure_parent(path)?;
-    mesh_io::write(path, view, &ply())?;
+    mesh_io::write(path, view, &binary_ply())?;
     Ok(())
 }
 
