@@ -15,11 +15,12 @@ pub struct Args {
     verify: bool,
 }
 
-/// Runs `cargo package --workspace` (xtask itself has `publish = false`).
+/// Runs `cargo package --workspace`, leaving out xtask (`publish = false`,
+/// which `cargo package` does not skip by itself).
 pub fn run(args: &Args) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut cmd = Command::new(cargo);
-    cmd.args(["package", "--workspace", "--allow-dirty"]);
+    cmd.args(["package", "--workspace", "--exclude", "xtask", "--allow-dirty"]);
     if !args.verify {
         cmd.arg("--no-verify");
     }
