@@ -264,13 +264,7 @@ mod tests {
     use super::*;
 
     fn args(extra: &[&str]) -> Args {
-        use clap::Parser;
-        #[derive(Parser)]
-        struct Cli {
-            #[command(flatten)]
-            args: Args,
-        }
-        Cli::parse_from(std::iter::once("curvature").chain(extra.iter().copied())).args
+        crate::commands::parse_args("curvature", extra)
     }
 
     #[test]

@@ -261,13 +261,7 @@ mod tests {
     use super::*;
 
     fn args(extra: &[&str]) -> Args {
-        use clap::Parser;
-        #[derive(Parser)]
-        struct Cli {
-            #[command(flatten)]
-            args: Args,
-        }
-        Cli::parse_from(std::iter::once("geodesic").chain(extra.iter().copied())).args
+        crate::commands::parse_args("geodesic", extra)
     }
 
     #[test]

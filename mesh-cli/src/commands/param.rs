@@ -183,13 +183,7 @@ mod tests {
     use super::*;
 
     fn args(extra: &[&str]) -> Args {
-        use clap::Parser;
-        #[derive(Parser)]
-        struct Cli {
-            #[command(flatten)]
-            args: Args,
-        }
-        Cli::parse_from(std::iter::once("param").chain(extra.iter().copied())).args
+        crate::commands::parse_args("param", extra)
     }
 
     #[test]
