@@ -1,0 +1,83 @@
+//! Times one eigensolve with its phase breakdown, and optionally writes the
+//! mesh so that peers (`../shared/peers/peer_bench.py`) run on the same
+//! input. Used for the runs too long for criterion (k = 200 on 100k
+//! vertices, 1e6 vertices):
+//!
+//! ```text
+//! cargo run --release -p mesh-spectral --example eigs -- torus 158 200 [OUT.off]
+//! cargo run --release -p mesh-spectral --example eigs -- FILE.off 20
+//! ```
+//!
+//! `EIGS_BLOCK`, `EIGS_BASIS`, `EIGS_GUARD`, `EIGS_SHIFT` override the
+//! corresponding [`Options`] fields (for tuning).
+//!
+//! Shapes are those of `mesh_core::shapes::by_name` (`icosphere 6` is
+//! 40,962 vertices, `torus 158` 99,856, `grid 316` 100,489).
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use mesh_core::operators::{self, MassKind};
+use mesh_core::{shapes, TriMesh};
+use mesh_spectral::{eigenpairs, Options};
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (mesh, rest): (TriMesh, &[String]) = match args.as_slice() {
+        [file, rest @ ..] if file.contains('.') => (mesh_io::read(file)?.mesh, rest),
+        [shape, res, rest @ ..] => (shapes::by_name(shape, res.parse()?)?, rest),
+        _ => return Err("usage: eigs (FILE | SHAPE RES) K [OUT.off]".into()),
+    };
+    let k: usize = rest.first().map_or(Ok(20), |s| s.parse())?;
+    if let Some(out) = rest.get(1) {
+        mesh_io::write(out, &mesh, &mesh_io::WriteOptions::default())?;
+        println!("wrote {out}");
+    }
+    let t = Instant::now();
+    let l = operators::cotan_laplacian(&mesh);
+    let m = operators::mass_matrix(&mesh, MassKind::MixedVoronoi);
+    let assemble = t.elapsed().as_secs_f64();
+    let env = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<f64>().ok());
+    let options = Options {
+        block_size: env("EIGS_BLOCK").map(|v| v as usize),
+        basis_size: env("EIGS_BASIS").map(|v| v as usize),
+        guard: env("EIGS_GUARD").map(|v| v as usize),
+        shift: env("EIGS_SHIFT"),
+        ..Options::default()
+    };
+    let pairs = eigenpairs(&l, &m, k, &options)?;
+    let s = &pairs.stats;
+    let worst = pairs.residuals.iter().copied().fold(0.0, f64::max);
+    println!(
+        "n {} k {k}: assemble {assemble:.3} s, eigenpairs {:.3} s (factor {:.3}, iterate {:.3} = solve {:.3} + orthogonalize {:.3} + rest, finalize {:.3})",
+        mesh.vertex_count(),
+        s.total_seconds,
+        s.factor_seconds,
+        s.iterate_seconds,
+        s.solve_seconds,
+        s.orthogonalize_seconds,
+        s.finalize_seconds
+    );
+    println!(
+        "  block {} basis {} restarts {} solves {} factor nnz {} shift {:?}; worst residual {worst:.2e}; lambda_1..3 {:?}, lambda_k {:.6}",
+        s.block_size,
+        s.basis_size,
+        s.restarts,
+        s.operator_columns,
+        s.factor_nonzeros,
+        s.shift,
+        &pairs.values[1.min(k - 1)..4.min(k)],
+        pairs.values[k - 1]
+    );
+    Ok(())
+}
