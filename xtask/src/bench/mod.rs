@@ -13,6 +13,7 @@ mod core;
 mod curvature;
 mod geodesic;
 mod param;
+mod spectral;
 mod wavelet;
 
 use std::path::PathBuf;
@@ -41,8 +42,14 @@ impl<'a> Operation<'a> {
 /// Every group of operations: a function from the mesh file and its content
 /// to the operations.
 type Group = for<'a> fn(&'a std::path::Path, &'a MeshData) -> Vec<Operation<'a>>;
-const GROUPS: &[Group] =
-    &[core::operations, curvature::operations, geodesic::operations, param::operations, wavelet::operations];
+const GROUPS: &[Group] = &[
+    core::operations,
+    curvature::operations,
+    geodesic::operations,
+    param::operations,
+    spectral::operations,
+    wavelet::operations,
+];
 
 /// Arguments of `cargo xtask bench`.
 #[derive(Debug, clap::Args)]

@@ -8,6 +8,7 @@ mod core;
 mod curvature;
 mod geodesic;
 mod param;
+mod spectral;
 mod wavelet;
 
 use std::path::{Path, PathBuf};
@@ -25,6 +26,7 @@ const GROUPS: &[Group] = &[
     ("curvature", curvature::run),
     ("geodesic", geodesic::run),
     ("param", param::run),
+    ("spectral", spectral::run),
     ("wavelet", wavelet::run),
 ];
 
