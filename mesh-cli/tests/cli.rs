@@ -171,3 +171,89 @@ fn mesh_io_fields(path: &Path) -> Vec<String> {
         .filter_map(|l| l.strip_prefix("property double ").map(str::to_owned))
         .collect()
 }
+
+#[test]
+fn spectral_eigenvalues_of_a_small_icosphere() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("phi.ply");
+    let v =
+        json(&["spectral", "--shape", "icosphere", "--res", "3", "--k", "9", "--json", "--out", out.to_str().unwrap()]);
+    let lambda: Vec<f64> = v["eigenvalues"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    // Unit sphere: 0 | l (l + 1) = 2 three times | 6 five times, ascending
+    // (642 vertices: within 2% of the continuum values).
+    assert_eq!(lambda.len(), 9);
+    assert!(lambda[0].abs() < 1e-9, "{lambda:?}");
+    assert!(lambda[1..4].iter().all(|x| (x - 2.0).abs() < 0.02 * 2.0), "{lambda:?}");
+    assert!(lambda[4..9].iter().all(|x| (x - 6.0).abs() < 0.02 * 6.0), "{lambda:?}");
+    assert!(lambda.windows(2).all(|w| w[0] <= w[1]), "{lambda:?}");
+    assert_eq!(v["residuals"].as_array().unwrap().len(), 9);
+    assert!(v["max_residual"].as_f64().unwrap() <= 1e-8);
+    assert!(v["timings_ms"]["eigensolver"].as_f64().unwrap() >= 0.0);
+    let fields = mesh_io_fields(&out);
+    assert!((0..9).all(|j| fields.contains(&format!("phi{j}"))), "{fields:?}");
+}
+
+#[test]
+fn spectral_filter_and_compress_write_their_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let smooth = dir.path().join("smooth.obj");
+    let (ok, _, stderr) = mesh(&[
+        "spectral",
+        "filter",
+        "--shape",
+        "torus",
+        "--res",
+        "8",
+        "--keep",
+        "10",
+        "--out",
+        smooth.to_str().unwrap(),
+    ]);
+    assert!(ok, "{stderr}");
+    assert!(std::fs::metadata(&smooth).unwrap().len() > 0);
+    let restored = dir.path().join("restored.obj");
+    let v = json(&[
+        "spectral",
+        "compress",
+        "--shape",
+        "torus",
+        "--res",
+        "8",
+        "--keep",
+        "32",
+        "--json",
+        "--out",
+        restored.to_str().unwrap(),
+    ]);
+    assert!(restored.is_file());
+    assert_eq!(v["keep"], 32);
+    // The area-weighted error never increases with the number of coefficients.
+    let curve: Vec<f64> = v["curve"].as_array().unwrap().iter().map(|p| p["rms"].as_f64().unwrap()).collect();
+    assert!(curve.len() >= 2 && curve.windows(2).all(|w| w[1] <= w[0] * (1.0 + 1e-12)), "{curve:?}");
+    let at_keep = v["error"]["rms"].as_f64().unwrap();
+    assert!((at_keep - curve.last().unwrap()).abs() <= 1e-12 * at_keep, "{at_keep} vs {curve:?}");
+}
+
+#[test]
+fn spectral_bad_input_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("one.off");
+    std::fs::write(&path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+    // More pairs than vertices, k = 0, keep above the basis, a NaN vertex,
+    // an unknown Laplacian: each an error message, never a panic.
+    let cases: [&[&str]; 5] = [
+        &["spectral", path.to_str().unwrap(), "--k", "5"],
+        &["spectral", "--shape", "icosphere", "--res", "1", "--k", "0"],
+        &["spectral", "compress", "--shape", "icosphere", "--res", "1", "--keep", "500"],
+        &["spectral", "--shape", "icosphere", "--res", "1", "--laplacian", "graph"],
+        &["spectral", "--shape", "grid", "--res", "0"],
+    ];
+    for args in cases {
+        let (ok, _, stderr) = mesh(args);
+        assert!(!ok, "{args:?} succeeded");
+        assert!(stderr.starts_with("mesh: error:"), "{args:?}: {stderr}");
+    }
+    std::fs::write(&path, "OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n").unwrap();
+    let (ok, _, stderr) = mesh(&["spectral", path.to_str().unwrap()]);
+    assert!(!ok && stderr.starts_with("mesh: error:"), "{stderr}");
+}

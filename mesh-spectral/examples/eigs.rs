@@ -14,6 +14,7 @@
 //! Shapes are those of `mesh_core::shapes::by_name` (`icosphere 6` is
 //! 40,962 vertices, `torus 158` 99,856, `grid 316` 100,489).
 
+use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -41,7 +42,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let k: usize = rest.first().map_or(Ok(20), |s| s.parse())?;
     if let Some(out) = rest.get(1) {
         mesh_io::write(out, &mesh, &mesh_io::WriteOptions::default())?;
-        println!("wrote {out}");
+        writeln!(std::io::stdout(), "wrote {out}")?;
     }
     let t = Instant::now();
     let l = operators::cotan_laplacian(&mesh);
@@ -58,7 +59,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let pairs = eigenpairs(&l, &m, k, &options)?;
     let s = &pairs.stats;
     let worst = pairs.residuals.iter().copied().fold(0.0, f64::max);
-    println!(
+    let mut stdout = std::io::stdout().lock();
+    writeln!(
+        stdout,
         "n {} k {k}: assemble {assemble:.3} s, eigenpairs {:.3} s (factor {:.3}, iterate {:.3} = solve {:.3} + orthogonalize {:.3} + rest, finalize {:.3})",
         mesh.vertex_count(),
         s.total_seconds,
@@ -67,8 +70,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         s.solve_seconds,
         s.orthogonalize_seconds,
         s.finalize_seconds
-    );
-    println!(
+    )?;
+    writeln!(
+        stdout,
         "  block {} basis {} restarts {} solves {} factor nnz {} shift {:?}; worst residual {worst:.2e}; lambda_1..3 {:?}, lambda_k {:.6}",
         s.block_size,
         s.basis_size,
@@ -78,6 +82,6 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         s.shift,
         &pairs.values[1.min(k - 1)..4.min(k)],
         pairs.values[k - 1]
-    );
+    )?;
     Ok(())
 }
