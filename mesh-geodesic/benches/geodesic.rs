@@ -9,8 +9,8 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use mesh_core::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
-    dijkstra, farthest_point_sampling, trace_path, DijkstraOptions, FastMarching, FmmOptions, FmmUpdate, HeatGeodesics,
-    HeatLaplacian, HeatOptions, SamplingOptions, SurfacePoint, TraceOptions,
+    dijkstra, exact_distance, farthest_point_sampling, trace_path, DijkstraOptions, FastMarching, FmmOptions,
+    FmmUpdate, HeatGeodesics, HeatLaplacian, HeatOptions, SamplingOptions, SurfacePoint, TraceOptions,
 };
 
 const LEVELS: [u32; 6] = [3, 4, 5, 6, 7, 8];
@@ -79,6 +79,17 @@ fn bench_heat(c: &mut Criterion) {
     }
 }
 
+fn bench_exact(c: &mut Criterion) {
+    let mut g = group(c, "exact");
+    // Up to 10,242 vertices: the window count grows faster than V.
+    for level in [3, 4, 5] {
+        let mesh = sphere(level);
+        g.bench_with_input(BenchmarkId::from_parameter(mesh.vertex_count()), &mesh, |b, m| {
+            b.iter(|| exact_distance(m, &[VertexId(0)], &Default::default()).expect("exact"))
+        });
+    }
+}
+
 fn bench_trace(c: &mut Criterion) {
     let mut g = group(c, "trace");
     for level in [4, 5, 6, 7] {
@@ -104,5 +115,5 @@ fn bench_sampling(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench_dijkstra, bench_fmm, bench_heat, bench_trace, bench_sampling);
+criterion_group!(benches, bench_dijkstra, bench_fmm, bench_heat, bench_exact, bench_trace, bench_sampling);
 criterion_main!(benches);

@@ -9,7 +9,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use mesh_core::{shapes, TriMesh, VertexId};
-use mesh_geodesic::{dijkstra, heat_distance, FastMarching, FmmOptions, FmmUpdate, HeatOptions};
+use mesh_geodesic::{dijkstra, exact_distance, heat_distance, FastMarching, FmmOptions, FmmUpdate, HeatOptions};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
@@ -80,6 +80,14 @@ fn export(dir: &Path, name: &str, m: &TriMesh) -> Res<()> {
     }
     write_field(dir.join(format!("{name}.heat.txt")), &heat_distance(m, &s, &HeatOptions::default())?)?;
     write_field(dir.join(format!("{name}.dijkstra.txt")), &dijkstra(m, &s, &Default::default())?.distance)?;
+    let start = std::time::Instant::now();
+    match exact_distance(m, &s, &Default::default()) {
+        Ok(d) => {
+            println!("{name}: exact {} vertices in {:.1} ms", m.vertex_count(), start.elapsed().as_secs_f64() * 1e3);
+            write_field(dir.join(format!("{name}.exact.txt")), &d)?;
+        }
+        Err(e) => println!("{name}: exact: {e}"),
+    }
     Ok(())
 }
 

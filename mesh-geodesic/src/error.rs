@@ -51,6 +51,15 @@ pub enum GeodesicError {
     /// The start of a path is not connected to any source.
     #[error("the start point is not reachable from any source (other component)")]
     Unreachable,
+    /// An algorithm reached its work bound before finishing (see the
+    /// option that sets it, e.g. [`crate::ExactOptions::max_windows`]).
+    #[error("work limit reached: more than {limit} {what}")]
+    WorkLimit {
+        /// What was counted.
+        what: &'static str,
+        /// The bound.
+        limit: usize,
+    },
     /// Geometry too degenerate for the chosen method, with what to use instead.
     #[error("degenerate geometry: {0}")]
     Degenerate(String),

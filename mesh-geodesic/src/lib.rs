@@ -5,6 +5,7 @@
 //! | module | what it holds | seed / paper |
 //! |---|---|---|
 //! | [`dijkstra`] | multi-source Dijkstra on the edge graph, shortest-path tree, edge paths | 2.6 (upper bound) |
+//! | [`exact`] | exact polyhedral distances by window propagation with the vertex-distance filter | Mitchell, Mount and Papadimitriou 1987; Surazhsky et al. 2005; Xin and Wang 2009 |
 //! | [`fmm`] | Fast Marching ([`FastMarching`]): eq. 2.33-2.34 plane-wave update, point-source and curved-front updates, obtuse triangles split by unfolding, per-vertex weights P | eq. 2.32-2.34, Kimmel and Sethian 1998 |
 //! | [`heat`] | the heat method ([`HeatGeodesics`]), prefactored, cotangent or intrinsic Delaunay Laplacian, boundary conditions | Crane, Weischedel and Wardetzky 2013 |
 //! | [`trace`] | paths along dC/dt = -grad U from any surface point back to the sources | eq. 2.35 |
@@ -50,6 +51,7 @@
 
 pub mod dijkstra;
 pub mod error;
+pub mod exact;
 pub mod fmm;
 pub mod heat;
 pub mod sampling;
@@ -58,7 +60,13 @@ pub mod trace;
 
 pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
 pub use error::{GeodesicError, Result};
+pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
 pub use heat::{heat_distance, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
 pub use sampling::{farthest_point_sampling, geodesic_voronoi, GeodesicVoronoi, SamplingMetric, SamplingOptions};
 pub use trace::{trace_path, GeodesicPath, SurfacePoint, TraceOptions};
+
+/// The README's example, compiled and run as a doc-test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

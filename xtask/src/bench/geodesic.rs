@@ -1,11 +1,14 @@
 //! mesh-geodesic operations from vertex 0, named as in peer_bench.py where
 //! they match (`dijkstra`; `heat_precompute` / `heat_solve` next to the
-//! `_igl` and `_pp3d` figures).
+//! `_igl` and `_pp3d` figures; `exact_geodesic` next to
+//! `exact_geodesic_pygeodesic`).
 
 use std::path::Path;
 
 use mesh_core::VertexId;
-use mesh_geodesic::{dijkstra, DijkstraOptions, FastMarching, FmmOptions, HeatGeodesics, HeatOptions};
+use mesh_geodesic::{
+    dijkstra, exact_distance, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, HeatGeodesics, HeatOptions,
+};
 use mesh_io::MeshData;
 
 use super::Operation;
@@ -29,5 +32,6 @@ pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>>
             Ok(h) => Ok(h.distance(&source)?),
             Err(e) => Err(e.clone().into()),
         }),
+        Operation::new("exact_geodesic", move || Ok(exact_distance(mesh, &source, &ExactOptions::default())?)),
     ]
 }

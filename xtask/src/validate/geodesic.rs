@@ -1,14 +1,15 @@
 //! mesh-geodesic: the accuracy targets against great circles on the
 //! unit icosphere (level 5) and straight lines on the flat disk, convergence
 //! under refinement, traced path lengths, metric invariants, and finite
-//! distances (infinity only across components) on every shared mesh.
+//! distances (infinity only across components) on every shared mesh; exact
+//! polyhedral geodesics against straight lines, cube unfoldings and MMP.
 
 use std::f64::consts::PI;
 
 use mesh_core::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
-    dijkstra, fmm_distance, heat_distance, trace_path, FmmOptions, FmmUpdate, HeatGeodesics, HeatOptions, SurfacePoint,
-    TraceOptions,
+    dijkstra, exact_distance, fmm_distance, heat_distance, trace_path, ExactOptions, FmmOptions, FmmUpdate,
+    GeodesicError, HeatGeodesics, HeatOptions, SurfacePoint, TraceOptions,
 };
 
 use super::{convergence_order, shared_data, Validator};
@@ -19,6 +20,7 @@ pub fn run(v: &mut Validator) {
     disk_convergence(v);
     traced_paths(v);
     metric_invariants(v);
+    exact_geodesics(v);
     shared_meshes(v);
 }
 
@@ -198,6 +200,94 @@ fn metric_invariants(v: &mut Validator) {
     }
 }
 
+fn exact(m: &TriMesh, s: VertexId) -> Res<Vec<f64>> {
+    exact_distance(m, &[s], &ExactOptions::default()).map_err(|e| e.to_string())
+}
+
+/// Exact polyhedral distances: Euclidean on flat meshes, unfoldings on the
+/// cube, MMP (pygeodesic, a committed fixture) on icosphere(3) with the
+/// chord and Fast Marching as bounds, and the great-circle error on
+/// icosphere(5) next to gdist's.
+fn exact_geodesics(v: &mut Validator) {
+    let flat = || -> Res<f64> {
+        let mut worst = 0.0f64;
+        for m in [shapes::grid(2.0, 1.0, 32, 16), shapes::disk(20, 5)] {
+            let m = m.map_err(|e| e.to_string())?;
+            for s in [0, m.vertex_count() / 3] {
+                let p0 = m.position(VertexId::new(s));
+                let truth: Vec<f64> = m.positions().iter().map(|p| p.distance(p0)).collect();
+                worst = worst.max(errors(&exact(&m, VertexId::new(s))?, &truth).0);
+            }
+        }
+        Ok(worst)
+    };
+    match flat() {
+        Ok(e) => v.at_most("exact: grid and jittered disk vs Euclidean distance, max error", e, 1e-12),
+        Err(e) => v.error("exact on flat meshes", e),
+    }
+    let cube = || -> Res<f64> {
+        let m = shapes::cube(8).map_err(|e| e.to_string())?;
+        let corner = m.positions().iter().position(|p| (*p + 1.0).length() < 1e-12).ok_or("no corner vertex")?;
+        // From (-1,-1,-1): straight on the faces through the corner, else
+        // through one of the two near faces next to the far face.
+        let truth: Vec<f64> = m
+            .positions()
+            .iter()
+            .map(|p| {
+                let q = (*p + 1.0).to_array();
+                if q.iter().any(|x| x.abs() < 1e-12) {
+                    return (*p + 1.0).length();
+                }
+                (0..3)
+                    .filter(|&i| (q[i] - 2.0).abs() < 1e-12)
+                    .map(|i| {
+                        let (a, b) = (q[(i + 1) % 3], q[(i + 2) % 3]);
+                        (2.0 + a).hypot(b).min((2.0 + b).hypot(a))
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        Ok(errors(&exact(&m, VertexId::new(corner))?, &truth).0)
+    };
+    match cube() {
+        Ok(e) => v.at_most("exact: cube(8) from a corner vs unfolding, max error", e, 1e-12),
+        Err(e) => v.error("exact on the cube", e),
+    }
+    let mmp = || -> Res<(f64, f64, f64)> {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../mesh-geodesic/tests/fixtures/icosphere3_exact_v0.txt");
+        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let truth: Vec<f64> = text
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| l.trim().parse::<f64>().map_err(|e| e.to_string()))
+            .collect::<Res<_>>()?;
+        let m = shapes::icosphere(3).map_err(|e| e.to_string())?;
+        let d = exact(&m, VertexId(0))?;
+        let f = fmm(FmmUpdate::CurvedFront)(&m)?;
+        if truth.len() != d.len() {
+            return Err(format!("fixture has {} values for {} vertices", truth.len(), d.len()));
+        }
+        let p0 = m.position(VertexId(0));
+        let below_chord = m.positions().iter().zip(&d).map(|(p, x)| p.distance(p0) - x).fold(0.0, f64::max);
+        let above_fmm = d.iter().zip(&f).map(|(x, y)| x - y).fold(0.0, f64::max);
+        Ok((errors(&d, &truth).0, below_chord, above_fmm))
+    };
+    match mmp() {
+        Ok((e, chord, above)) => {
+            v.at_most("exact: icosphere(3) vs MMP (pygeodesic fixture), max difference", e, 1e-9);
+            v.at_most("exact: icosphere(3) amount below the Euclidean chord", chord, 1e-12);
+            v.at_most("exact: icosphere(3) amount above Fast Marching", above, 1e-12);
+        }
+        Err(e) => v.error("exact vs MMP", e),
+    }
+    match sphere_errors(5, |m| exact(m, VertexId(0))) {
+        // The polyhedron's own geodesics differ from great circles by this much.
+        Ok((max, _)) => v.at_most("icosphere(5) exact polyhedral max error vs great circle (gdist 5e-4)", max, 6e-4),
+        Err(e) => v.error("icosphere(5) exact", e),
+    }
+}
+
 /// Finite distances within the source's component, infinite outside, on
 /// every shared mesh and method; heat with the intrinsic Laplacian on
 /// zero-area triangles (libigl returns NaN there).
@@ -221,12 +311,19 @@ fn shared_meshes(v: &mut Validator) {
         };
         let comp = m.connectivity().components().vertex_component.clone();
         let s = VertexId(0);
+        let exact_field = match exact_distance(&m, &[s], &ExactOptions::default()) {
+            Err(GeodesicError::Degenerate(why)) => {
+                v.holds(format!("{name} exact: zero-area faces refused with a clear error"), true, why);
+                None
+            }
+            other => Some(("exact", other.map_err(|e| e.to_string()))),
+        };
         let fields: [(&str, Res<Vec<f64>>); 3] = [
             ("heat", heat(&m)),
             ("fmm", fmm(FmmUpdate::CurvedFront)(&m)),
             ("dijkstra", dijkstra(&m, &[s], &Default::default()).map(|t| t.distance).map_err(|e| e.to_string())),
         ];
-        for (method, field) in fields {
+        for (method, field) in fields.into_iter().chain(exact_field) {
             match field {
                 Ok(d) => {
                     let wrong = d
