@@ -198,3 +198,36 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Random triangle soups (non-manifold, degenerate, duplicate and
+    /// isolated vertices): a typed error or distances without NaN, 0 at the
+    /// sources, never below the Euclidean distance; nothing panics or hangs.
+    #[test]
+    fn random_soups_never_crash(
+        points in prop::collection::vec(prop::array::uniform3(-2i8..3), 3..14),
+        faces in prop::collection::vec(prop::array::uniform3(0usize..14), 1..20),
+        source in 0usize..14,
+    ) {
+        let n = points.len();
+        let p: Vec<DVec3> = points.iter().map(|c| DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64 * 0.5)).collect();
+        let f: Vec<[u32; 3]> = faces.iter().map(|t| t.map(|v| (v % n) as u32)).collect();
+        let Ok(mesh) = TriMesh::new(p, f) else { return Ok(()) };
+        let s = VertexId::new(source % n);
+        match exact_distance(&mesh, &[s], &ExactOptions { max_windows: 100_000 }) {
+            Ok(d) => {
+                prop_assert_eq!(d[s.idx()], 0.0);
+                let p0 = mesh.position(s);
+                for (i, x) in d.iter().enumerate() {
+                    prop_assert!(!x.is_nan() && *x >= mesh.position(VertexId::new(i)).distance(p0) * (1.0 - 1e-12));
+                }
+            }
+            Err(e) => prop_assert!(
+                matches!(e, GeodesicError::Mesh(_) | GeodesicError::Degenerate(_) | GeodesicError::WorkLimit { .. }),
+                "{e}"
+            ),
+        }
+    }
+}
