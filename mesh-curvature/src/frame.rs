@@ -98,12 +98,19 @@ pub(crate) fn rotate_between(from: DVec3, to: DVec3, x: DVec3) -> DVec3 {
 /// Pivoting makes this a reliable rank test whatever the scale of each
 /// unknown. A plain `L D L^T` is tried first and kept when every pivot keeps
 /// at least [`FAST_PIVOT`] of its diagonal entry, where pivoting would
-/// change nothing. O(N^3).
-pub(crate) fn solve_spd<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], tol: f64) -> Option<()> {
+/// change nothing.
+///
+/// Returns the conditioning of the last `watch` unknowns: the largest
+/// diagonal entry `(A^-1)_kk` over them, which bounds how much a
+/// perturbation of the least-squares data moves them (for `A = X^T X`,
+/// `|dx_k| <= sqrt((A^-1)_kk) |dy|`). O(N^3), plus O(watch^3) for the test.
+pub(crate) fn solve_spd<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], tol: f64, watch: usize) -> Option<f64> {
     let mut x = *b;
-    if ldlt_solve(a, &mut x) && x.iter().all(|v| v.is_finite()) {
-        *b = x;
-        return Some(());
+    if let Some(spread) = ldlt_solve(a, &mut x, watch) {
+        if x.iter().all(|v| v.is_finite()) {
+            *b = x;
+            return Some(spread);
+        }
     }
     let mut scale = [0.0; N];
     for i in 0..N {
@@ -120,11 +127,11 @@ pub(crate) fn solve_spd<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], tol
         }
         x[i] = b[i] * scale[i];
     }
-    pivoted_cholesky_solve(&mut m, &mut x, tol)?;
+    let spread = pivoted_cholesky_solve(&mut m, &mut x, tol, &scale, watch)?;
     for i in 0..N {
         b[i] = x[i] * scale[i];
     }
-    b.iter().all(|v| v.is_finite()).then_some(())
+    b.iter().all(|v| v.is_finite()).then_some(spread)
 }
 
 /// Below this relative pivot, the plain factorization of [`solve_spd`]
@@ -134,7 +141,7 @@ const FAST_PIVOT: f64 = 1e-5;
 /// `L D L^T` solve without pivoting (left-looking, no square roots: the
 /// fastest form for these tiny systems); `false` when a pivot `d_j` falls
 /// below [`FAST_PIVOT`] times `A_jj`.
-fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N]) -> bool {
+fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], watch: usize) -> Option<f64> {
     let mut l = [[0.0; N]; N];
     let mut dinv = [0.0; N];
     for j in 0..N {
@@ -154,7 +161,7 @@ fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N]) -> bool {
             dj -= w[k] * ljk;
         }
         if dj.is_nan() || dj <= FAST_PIVOT * a[j][j] {
-            return false;
+            return None;
         }
         dinv[j] = 1.0 / dj;
     }
@@ -174,7 +181,23 @@ fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N]) -> bool {
             b[k] -= l[i][k] * bi;
         }
     }
-    true
+    // (A^-1)_kk = sum_j (L^-1 e_k)_j^2 / d_j.
+    let mut spread = 0.0f64;
+    for k in N - watch.min(N)..N {
+        let mut y = [0.0; N];
+        y[k] = 1.0;
+        let mut sum = dinv[k];
+        for i in k + 1..N {
+            let mut s = 0.0;
+            for m in k..i {
+                s -= l[i][m] * y[m];
+            }
+            y[i] = s;
+            sum += s * s * dinv[i];
+        }
+        spread = spread.max(sum);
+    }
+    Some(spread)
 }
 
 /// `L L^T x = x` with `L` in the lower triangle of `m`, column-oriented so
@@ -199,7 +222,13 @@ fn triangular_solves<const N: usize>(m: &[[f64; N]; N], x: &mut [f64; N]) {
 /// Right-looking Cholesky with symmetric (diagonal) pivoting of a full
 /// symmetric matrix, then the solve; `None` when the largest remaining
 /// pivot is below `tol`.
-fn pivoted_cholesky_solve<const N: usize>(m: &mut [[f64; N]; N], x: &mut [f64; N], tol: f64) -> Option<()> {
+fn pivoted_cholesky_solve<const N: usize>(
+    m: &mut [[f64; N]; N],
+    x: &mut [f64; N],
+    tol: f64,
+    scale: &[f64; N],
+    watch: usize,
+) -> Option<f64> {
     let mut perm = [0usize; N];
     for (k, p) in perm.iter_mut().enumerate() {
         *p = k;
@@ -245,7 +274,24 @@ fn pivoted_cholesky_solve<const N: usize>(m: &mut [[f64; N]; N], x: &mut [f64; N
     for i in 0..N {
         x[perm[i]] = y[i];
     }
-    Some(())
+    // (A^-1)_kk = scale_k^2 |L^-1 e_q|^2 with q the pivoted position of k.
+    let mut spread = 0.0f64;
+    for (k, sk) in scale.iter().enumerate().skip(N - watch.min(N)) {
+        let q = perm.iter().position(|&p| p == k).unwrap_or(0);
+        let mut y = [0.0; N];
+        y[q] = 1.0 / m[q][q];
+        let mut sum = y[q] * y[q];
+        for i in q + 1..N {
+            let mut s = 0.0;
+            for c in q..i {
+                s -= m[i][c] * y[c];
+            }
+            y[i] = s / m[i][i];
+            sum += y[i] * y[i];
+        }
+        spread = spread.max(sum * sk * sk);
+    }
+    Some(spread)
 }
 
 #[cfg(test)]
@@ -287,7 +333,7 @@ mod tests {
     fn cholesky_solves_and_refuses_singular() {
         let a = [[4.0, 2.0, 0.0], [2.0, 3.0, 1.0], [0.0, 1.0, 2.0]];
         let mut b = [2.0, 5.0, 3.0];
-        solve_spd(&a, &mut b, 1e-14).unwrap();
+        solve_spd(&a, &mut b, 1e-14, 0).unwrap();
         let x = b;
         let a = [[4.0, 2.0, 0.0], [2.0, 3.0, 1.0], [0.0, 1.0, 2.0]];
         for i in 0..3 {
@@ -295,14 +341,29 @@ mod tests {
             assert!((r - [2.0, 5.0, 3.0][i]).abs() < 1e-12);
         }
         let s = [[1.0, 1.0], [1.0, 1.0]];
-        assert!(solve_spd(&s, &mut [1.0, 2.0], 1e-12).is_none());
+        assert!(solve_spd(&s, &mut [1.0, 2.0], 1e-12, 0).is_none());
         // Badly scaled but regular: equilibration makes it easy.
         let s = [[1e-20, 0.0], [0.0, 1e20]];
         let mut b = [1e-20, 1e20];
-        solve_spd(&s, &mut b, 1e-12).unwrap();
+        solve_spd(&s, &mut b, 1e-12, 0).unwrap();
         assert!((b[0] - 1.0).abs() < 1e-14 && (b[1] - 1.0).abs() < 1e-14);
         // Rank deficient only after pivoting exposes it: columns 0 and 2 equal.
         let s = [[2.0, 1.0, 2.0], [1.0, 3.0, 1.0], [2.0, 1.0, 2.0]];
-        assert!(solve_spd(&s, &mut [1.0, 1.0, 1.0], 1e-12).is_none());
+        assert!(solve_spd(&s, &mut [1.0, 1.0, 1.0], 1e-12, 0).is_none());
+    }
+
+    #[test]
+    fn spread_is_the_inverse_diagonal() {
+        // A^-1 = [[3, -2, 1], [-2, 2, -1], [1, -1, 1]] (det 1).
+        let a = [[1.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]];
+        for (watch, expected) in [(0, 0.0), (1, 1.0), (2, 2.0), (3, 3.0)] {
+            let spread = solve_spd(&a, &mut [1.0, 0.0, 0.0], 1e-14, watch).unwrap();
+            assert!((spread - expected).abs() < 1e-12, "watch {watch}: {spread}");
+        }
+        // The same through the pivoted path: a pivot below FAST_PIVOT.
+        let eps = 1e-7;
+        let a = [[1.0, 1.0], [1.0, 1.0 + eps]];
+        let spread = solve_spd(&a, &mut [0.0, 1.0], 1e-14, 2).unwrap();
+        assert!((spread / ((1.0 + eps) / eps) - 1.0).abs() < 1e-6, "{spread}");
     }
 }

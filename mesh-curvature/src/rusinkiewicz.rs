@@ -54,7 +54,7 @@ fn face_tensor(p: [DVec3; 3], n: [DVec3; 3]) -> Option<FaceTensor> {
     }
     m[1][0] = m[0][1];
     m[2][1] = m[1][2];
-    solve_spd(&m, &mut rhs, 1e-12)?;
+    solve_spd(&m, &mut rhs, 1e-12, 0)?;
     let form = Sym2::new(rhs[0], rhs[1], rhs[2]);
     Some(FaceTensor { normal, u, v, form, corner_weight: mixed_voronoi_corners(p) })
 }
