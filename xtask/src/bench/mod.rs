@@ -12,6 +12,7 @@
 mod core;
 mod curvature;
 mod geodesic;
+mod nurbs;
 mod param;
 mod spectral;
 mod wavelet;
@@ -46,6 +47,7 @@ const GROUPS: &[Group] = &[
     core::operations,
     curvature::operations,
     geodesic::operations,
+    nurbs::operations,
     param::operations,
     spectral::operations,
     wavelet::operations,

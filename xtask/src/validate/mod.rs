@@ -7,6 +7,7 @@
 mod core;
 mod curvature;
 mod geodesic;
+mod nurbs;
 mod param;
 mod spectral;
 mod wavelet;
@@ -25,6 +26,7 @@ const GROUPS: &[Group] = &[
     ("core", core::run),
     ("curvature", curvature::run),
     ("geodesic", geodesic::run),
+    ("nurbs", nurbs::run),
     ("param", param::run),
     ("spectral", spectral::run),
     ("wavelet", wavelet::run),
