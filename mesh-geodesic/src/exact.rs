@@ -6,9 +6,9 @@
 //! `sigma` (Mitchell, Mount and Papadimitriou 1987; the planar window
 //! geometry of Surazhsky, Surazhsky, Kirsanov, Gortler and Hoppe 2005).
 //! Windows are propagated across faces in order of their smallest distance;
-//! a geodesic can only pass through a vertex whose total angle is at least
-//! 2 pi (saddles, flat vertices) or that lies on the boundary, and such
-//! vertices become pseudo-sources that emit windows in every direction.
+//! a geodesic can only bend at a vertex whose total angle exceeds 2 pi
+//! (saddles) or that lies on the boundary, and such vertices become
+//! pseudo-sources that emit windows in every direction.
 //!
 //! Instead of MMP's exact trimming of overlapping windows, a window is
 //! dropped when the vertex distances already found prove it useless: a
@@ -16,8 +16,11 @@
 //! P farthest from U (or the same with V), because every geodesic through
 //! it is then beaten by the path through U along the edge (the filter of
 //! Xin and Wang 2009, "improved Chen and Han", which VTP, Qin et al. 2016,
-//! builds on). Both tests are conservative, so the result is the exact
-//! polyhedral distance up to rounding. Worst case O(V^2 log V) time;
+//! builds on). Rays of a window that cross the ray by which an earlier
+//! window on the same edge reached the face's apex more shortly are cut
+//! (Chen and Han 1990, "one angle, one split"). All tests are
+//! conservative, so the result is the exact polyhedral distance up to
+//! rounding. Worst case O(V^2 log V) time;
 //! bounded by [`ExactOptions::max_windows`].
 
 use std::cmp::Ordering;
@@ -93,8 +96,10 @@ pub fn exact_distance(mesh: &TriMesh, sources: &[VertexId], options: &ExactOptio
 struct Geometry {
     len: Vec<f64>,
     apex: Vec<DVec2>,
-    /// Vertices a geodesic may pass through: total angle >= 2 pi (minus
-    /// rounding) or on the boundary.
+    /// Vertices a geodesic may bend around: total angle above 2 pi (beyond
+    /// rounding) or on the boundary. Geodesics also pass straight through
+    /// flat vertices; the windows on both sides of such a vertex cover that
+    /// line, so flat vertices need not emit windows.
     pseudo_source: Vec<bool>,
 }
 
@@ -126,7 +131,7 @@ impl Geometry {
         }
         let pseudo_source = (0..mesh.vertex_count())
             .map(|v| match conn.vertex_kind(VertexId::new(v)) {
-                VertexKind::Interior => angle[v] >= 2.0 * PI * (1.0 - 1e-9),
+                VertexKind::Interior => angle[v] > 2.0 * PI * (1.0 + 1e-12),
                 _ => true,
             })
             .collect();
@@ -175,6 +180,9 @@ struct Propagation<'a> {
     distance: Vec<f64>,
     windows: BinaryHeap<Window>,
     vertices: BinaryHeap<HeapEntry>,
+    /// Per half-edge: the shortest distance to the apex C found by a window
+    /// on it, and where that window's ray to C crosses the edge.
+    through_apex: Vec<(f64, f64)>,
     created: usize,
     max_windows: usize,
 }
@@ -187,6 +195,7 @@ impl<'a> Propagation<'a> {
             distance: vec![f64::INFINITY; conn.vertex_count()],
             windows: BinaryHeap::new(),
             vertices: BinaryHeap::new(),
+            through_apex: vec![(f64::INFINITY, 0.0); geo.len.len()],
             created: 0,
             max_windows,
         }
@@ -296,24 +305,54 @@ impl<'a> Propagation<'a> {
 
     /// Carries `w` across its face A B C: the rays from the source through
     /// the window's ends leave through A C, C B or both (split at C, which
-    /// then gets its distance).
+    /// then gets its distance). If an earlier window on the same edge
+    /// reached C more shortly, along the segment from `(x*, 0)` to C, the
+    /// rays of `w` that cross that segment are dropped ("one angle, one
+    /// split", Chen and Han 1990): where they cross, the other path is no
+    /// longer, so theirs cannot be shortest beyond.
     fn propagate(&mut self, w: &Window) -> Result<()> {
         let h = HalfedgeId(w.h);
         let (len, c, s) = (self.geo.len[h.idx()], self.geo.apex[h.idx()], w.source);
         let (a, b) = (DVec2::ZERO, DVec2::new(len, 0.0));
         let (p0, p1) = (DVec2::new(w.b0, 0.0), DVec2::new(w.b1, 0.0));
-        // Where the ray from the source through C crosses the edge line.
+        // Where the ray from the source through C crosses the edge line, and
+        // the (possibly virtual) distance to C along it.
         let xc = s.x + (c.x - s.x) * (-s.y) / (c.y - s.y);
-        let (ac, cb) = (h.prev(), h.next()); // half-edges C -> A and B -> C
-        if xc <= w.b0 {
-            self.cross(cb, [c, b], w, p0, p1)
-        } else if xc >= w.b1 {
-            self.cross(ac, [a, c], w, p0, p1)
-        } else {
-            self.offer(self.conn.opposite_vertex(h), w.sigma + s.distance(c));
-            self.cross(ac, [a, c], w, p0, c)?;
-            self.cross(cb, [c, b], w, c, p1)
+        let to_c = w.sigma + s.distance(c);
+        let (best, best_x) = self.through_apex[h.idx()];
+        let cut = (best < to_c * (1.0 - PRUNE_MARGIN)).then_some(best_x);
+        if xc > w.b0 && xc < w.b1 {
+            self.offer(self.conn.opposite_vertex(h), to_c);
+            if to_c < best {
+                self.through_apex[h.idx()] = (to_c, xc);
+            }
         }
+        let (ac, cb) = (h.prev(), h.next()); // half-edges C -> A and B -> C
+        if xc > w.b0 {
+            // Rays left of C, through [b0, min(xc, b1)]; beaten right of x*.
+            let (end, end_point) = if xc < w.b1 { (xc, c) } else { (w.b1, p1) };
+            match cut {
+                Some(x) if x < end => {
+                    if x > w.b0 {
+                        self.cross(ac, [a, c], w, p0, DVec2::new(x, 0.0))?;
+                    }
+                }
+                _ => self.cross(ac, [a, c], w, p0, end_point)?,
+            }
+        }
+        if xc < w.b1 {
+            // Rays right of C, through [max(xc, b0), b1]; beaten left of x*.
+            let (start, start_point) = if xc > w.b0 { (xc, c) } else { (w.b0, p0) };
+            match cut {
+                Some(x) if x > start => {
+                    if x < w.b1 {
+                        self.cross(cb, [c, b], w, DVec2::new(x, 0.0), p1)?;
+                    }
+                }
+                _ => self.cross(cb, [c, b], w, start_point, p1)?,
+            }
+        }
+        Ok(())
     }
 
     /// Emits the part of the cone of rays from the source through `q0` and
