@@ -15,15 +15,15 @@
 //! deciding when they carry it too loosely (a 2-ring of 14 points around a
 //! valence-4 vertex nearly on a quartic curve through the centre, which the
 //! quartic would interpolate with an O(1) error): the fit then grows the
-//! neighbourhood by one ring, then lowers the degree. Both tests are taken
-//! in whitened tangent coordinates, so a stretched but well-spread
-//! neighbourhood passes them.
+//! neighbourhood by one ring, then lowers the degree. The conditioning is
+//! measured in whitened tangent coordinates, so a stretched but well-spread
+//! neighbourhood passes.
 
 use glam::DVec3;
 use mesh_core::TriMesh;
 
 use crate::error::Result;
-use crate::frame::{solve_spd, tangent_basis, Sym2};
+use crate::frame::{solve_spd, tangent_basis, InverseBlock, Sym2};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
 use crate::normals::{vertex_normals, Normals};
 use crate::par;
@@ -115,7 +115,7 @@ const PIVOT_TOLERANCE: f64 = 1e-10;
 
 /// Conditioning test of the fits: the largest diagonal entry of the inverse
 /// normal matrix over the gradient and Hessian coefficients, in whitened
-/// coordinates (see [`Whitening`]). It bounds how much the residual of the
+/// coordinates (see `Moments::whitened_spread`). It bounds how much the residual of the
 /// fit (the surface's terms beyond the polynomial, `O(h^(d + 1))`) is
 /// amplified into the curvature: `|error| <= sqrt(spread) |residual|`.
 /// Well-spread neighbourhoods give about 4 whatever the mesh (2-rings of
@@ -150,24 +150,15 @@ struct Moments {
     sx: [f64; 10],
     /// `sum s_y x^a y^b`, `a + b <= 3` (slope along y).
     sy: [f64; 10],
-    /// Weights of the squared slope residuals along x and y, relative to
-    /// the position residuals (1 in isotropic coordinates).
-    slope_weights: [f64; 2],
+    /// Number of positions.
+    points: usize,
     /// Number of equations.
     rows: usize,
 }
 
 impl Moments {
     fn new() -> Self {
-        Self {
-            pos: [0.0; 45],
-            z: [0.0; 15],
-            nrm: [0.0; 28],
-            sx: [0.0; 10],
-            sy: [0.0; 10],
-            slope_weights: [1.0; 2],
-            rows: 0,
-        }
+        Self { pos: [0.0; 45], z: [0.0; 15], nrm: [0.0; 28], sx: [0.0; 10], sy: [0.0; 10], points: 0, rows: 0 }
     }
 
     /// A position `z(x, y)`.
@@ -187,6 +178,7 @@ impl Moments {
             }
         }
         self.rows += 1;
+        self.points += 1;
     }
 
     /// Slopes `(z_x, z_y)` at `(x, y)`.
@@ -242,30 +234,73 @@ impl Moments {
                 let (aj, bj) = column(j);
                 let mut v = self.pos[tri(8, ai + aj, bi + bj)];
                 if ai > 0 && aj > 0 {
-                    v += (ai * aj) as f64 * self.slope_weights[0] * self.nrm[tri(6, ai + aj - 2, bi + bj)];
+                    v += (ai * aj) as f64 * self.nrm[tri(6, ai + aj - 2, bi + bj)];
                 }
                 if bi > 0 && bj > 0 {
-                    v += (bi * bj) as f64 * self.slope_weights[1] * self.nrm[tri(6, ai + aj, bi + bj - 2)];
+                    v += (bi * bj) as f64 * self.nrm[tri(6, ai + aj, bi + bj - 2)];
                 }
                 m[i][j] = v;
                 m[j][i] = v;
             }
             let mut r = self.z[tri(4, ai, bi)];
             if ai > 0 {
-                r += ai as f64 * self.slope_weights[0] * self.sx[tri(3, ai - 1, bi)];
+                r += ai as f64 * self.sx[tri(3, ai - 1, bi)];
             }
             if bi > 0 {
-                r += bi as f64 * self.slope_weights[1] * self.sy[tri(3, ai, bi - 1)];
+                r += bi as f64 * self.sy[tri(3, ai, bi - 1)];
             }
             rhs[i] = r;
         }
         // The gradient and Hessian columns are the last `5 - first`.
-        let spread = solve_spd(&m, &mut rhs, PIVOT_TOLERANCE, 5 - first)?;
+        let watch = 5 - first;
+        let inverse = solve_spd(&m, &mut rhs, PIVOT_TOLERANCE, watch)?;
         let mut full = [0.0; COLUMNS];
         for (i, x) in rhs.iter().enumerate() {
             full[first + N - 1 - i] = *x;
         }
-        Some((full, spread))
+        Some((full, self.whitened_spread(&inverse, first)?))
+    }
+
+    /// The largest variance factor of the gradient and Hessian coefficients
+    /// (from columns `first` on) in whitened coordinates (see [`MAX_SPREAD`]),
+    /// given their block `inverse` of the inverse normal matrix in the fit's
+    /// coordinates (local index `k` for column `4 - k`, as the solve orders
+    /// them): the polynomial space is invariant under the linear map
+    /// `(x, y) = A (u, v)` to whitened `(u, v)`, whose coefficients are
+    /// `c_w = T c` (gradient `A^T g`, Hessian `A^T H A`), so their variance
+    /// factors are the diagonal of `T C T^T`. `None` when the points span
+    /// less than a plane (principal variances in a ratio below 1e-12).
+    fn whitened_spread(&self, inverse: &InverseBlock, first: usize) -> Option<f64> {
+        let count = self.points.max(1) as f64;
+        let second =
+            Sym2::new(self.pos[tri(8, 2, 0)], self.pos[tri(8, 1, 1)], self.pos[tri(8, 0, 2)]).scaled(1.0 / count);
+        let (l1, l2, [c, s]) = second.eigen();
+        if !(l1.is_finite() && l2 > 1e-12 * l1) {
+            return None;
+        }
+        // Covariance factor of columns i, j (both >= first).
+        let cov = |i: usize, j: usize| inverse[4 - i][4 - j];
+        // A = [e1 sigma1, e2 sigma2], principal axes e1 = (c, s), e2 = (-s, c).
+        let (s1, s2) = (l1.sqrt(), l2.sqrt());
+        let a = [[c * s1, -s * s2], [s * s1, c * s2]];
+        let form = |t: &[f64], at: usize| -> f64 {
+            let mut v = 0.0;
+            for (j, tj) in t.iter().enumerate() {
+                for (k, tk) in t.iter().enumerate() {
+                    v += tj * tk * cov(at + j, at + k);
+                }
+            }
+            v
+        };
+        // Hessian coefficients (c20, c11, c02), H = [[2 c20, c11], [c11, 2 c02]].
+        let mut spread = form(&[a[0][0] * a[0][0], a[0][0] * a[1][0], a[1][0] * a[1][0]], 2)
+            .max(form(&[2.0 * a[0][0] * a[0][1], a[0][0] * a[1][1] + a[1][0] * a[0][1], 2.0 * a[1][0] * a[1][1]], 2))
+            .max(form(&[a[0][1] * a[0][1], a[0][1] * a[1][1], a[1][1] * a[1][1]], 2));
+        if first == 0 {
+            // Gradient (D, E)_w = A^T (D, E).
+            spread = spread.max(form(&[a[0][0], a[1][0]], 0)).max(form(&[a[0][1], a[1][1]], 0));
+        }
+        Some(spread)
     }
 }
 
@@ -279,9 +314,9 @@ fn powers<const N: usize>(t: f64) -> [f64; N] {
     p
 }
 
-/// Fits the height field at one vertex in [`Whitening`] coordinates, with
-/// the conditioning of its curvature coefficients ([`MAX_SPREAD`]); `None`
-/// when the system is rank deficient.
+/// Fits the height field at one vertex, with the conditioning of its
+/// curvature coefficients ([`MAX_SPREAD`]); `None` when the system is rank
+/// deficient. Coordinates are scaled by the RMS neighbour distance.
 fn fit_vertex(
     p: &[DVec3],
     nv: &[DVec3],
@@ -290,75 +325,34 @@ fn fit_vertex(
     options: &FitOptions,
 ) -> Option<(LocalTensor, f64)> {
     let n = nv[centre];
+    let (t1, t2) = tangent_basis(n);
     let c = p[centre];
     let neighbours = ring.get(1..).unwrap_or(&[]);
-    let frame = Whitening::new(p, c, n, neighbours)?;
-    let (t1, t2) = (frame.axes[0], frame.axes[1]);
+    // Root-mean-square neighbour distance: one square root per fit.
+    let mean_square =
+        neighbours.iter().map(|&q| p[q as usize].distance_squared(c)).sum::<f64>() / neighbours.len().max(1) as f64;
+    let scale = mean_square.sqrt();
+    if scale.is_nan() || scale <= 0.0 {
+        return None;
+    }
+    let inv = 1.0 / scale;
     let mut mom = Moments::new();
-    // Slope residuals weighted as in isotropic coordinates: d z_w / d x_w =
-    // (sigma_x / scale) z_x.
-    mom.slope_weights = [(frame.scale * frame.inv_sigma[0]).powi(2), (frame.scale * frame.inv_sigma[1]).powi(2)];
     for &q in neighbours {
         let q = q as usize;
-        let d = p[q] - c;
-        let (x, y) = (d.dot(t1) * frame.inv_sigma[0], d.dot(t2) * frame.inv_sigma[1]);
-        mom.add_point(x, y, d.dot(n) * frame.inv_scale);
+        let d = (p[q] - c) * inv;
+        let (x, y) = (d.dot(t1), d.dot(t2));
+        mom.add_point(x, y, d.dot(n));
         if options.use_normals {
             let m = nv[q];
             let mz = m.dot(n);
             if mz > 0.2 {
-                let k = frame.inv_scale;
-                mom.add_slopes(x, y, -m.dot(t1) / mz * frame.sigma[0] * k, -m.dot(t2) / mz * frame.sigma[1] * k);
+                mom.add_slopes(x, y, -m.dot(t1) / mz, -m.dot(t2) / mz);
             }
         }
     }
     let (s, spread) = mom.solve(options)?;
-    // z = scale z_w(x / sigma_x, y / sigma_y): back to unscaled derivatives.
-    let [ix, iy] = frame.inv_sigma;
-    let h = frame.scale;
-    let hessian = Sym2::new(2.0 * s[2] * h * ix * ix, s[3] * h * ix * iy, 2.0 * s[4] * h * iy * iy);
-    Some((height_field_tensor(n, t1, t2, [s[0] * h * ix, s[1] * h * iy], hessian), spread))
-}
-
-/// The coordinates a fit is solved in: the tangent plane's principal axes
-/// of the neighbours' offsets, each scaled to unit root-mean-square
-/// ("whitened"), and heights scaled by the root-mean-square distance. The
-/// polynomial spaces are invariant under this linear map, so the fit is the
-/// same; but the conditioning measured in these coordinates no longer
-/// depends on how stretched the neighbourhood is (the thin triangles of a
-/// sphere tessellation near its poles), only on how well its points
-/// determine a polynomial.
-struct Whitening {
-    axes: [DVec3; 2],
-    sigma: [f64; 2],
-    inv_sigma: [f64; 2],
-    scale: f64,
-    inv_scale: f64,
-}
-
-impl Whitening {
-    /// `None` when the offsets span less than a plane (to 1e-12 in the
-    /// ratio of the principal variances), where no surface fit is posed.
-    fn new(p: &[DVec3], c: DVec3, n: DVec3, neighbours: &[u32]) -> Option<Self> {
-        let (t1, t2) = tangent_basis(n);
-        let (mut xx, mut xy, mut yy) = (0.0, 0.0, 0.0);
-        for &q in neighbours {
-            let d = p[q as usize] - c;
-            let (x, y) = (d.dot(t1), d.dot(t2));
-            xx += x * x;
-            xy += x * y;
-            yy += y * y;
-        }
-        let count = neighbours.len().max(1) as f64;
-        let (l1, l2, [cs, sn]) = Sym2::new(xx / count, xy / count, yy / count).eigen();
-        if !(l1.is_finite() && l2 > 1e-12 * l1) {
-            return None;
-        }
-        let axes = [cs * t1 + sn * t2, cs * t2 - sn * t1];
-        let sigma = [l1.sqrt(), l2.sqrt()];
-        let scale = (l1 + l2).sqrt();
-        Some(Self { axes, sigma, inv_sigma: [1.0 / sigma[0], 1.0 / sigma[1]], scale, inv_scale: 1.0 / scale })
-    }
+    let hessian = Sym2::new(2.0 * s[2], s[3], 2.0 * s[4]).scaled(inv);
+    Some((height_field_tensor(n, t1, t2, [s[0], s[1]], hessian), spread))
 }
 
 /// The curvature tensor at the origin of the height field

@@ -54,18 +54,21 @@ impl Sym2 {
     }
 
     /// Eigenvalues `l1 >= l2` and the unit eigenvector `(cos t, sin t)` of
-    /// `l1`, robust for repeated eigenvalues (any direction is returned then).
+    /// `l1` with `cos t >= 0`, robust for repeated eigenvalues (any direction
+    /// is returned then). Closed form without trigonometry: `(A - l1) v = 0`
+    /// is solved from whichever row of `A - l1` is the larger.
     pub fn eigen(self) -> (f64, f64, [f64; 2]) {
         let half_diff = 0.5 * (self.a - self.c);
         let mean = 0.5 * (self.a + self.c);
         let radius = half_diff.hypot(self.b);
         let (l1, l2) = (mean + radius, mean - radius);
-        if radius == 0.0 {
+        if radius.is_nan() || radius <= 0.0 {
             return (l1, l2, [1.0, 0.0]);
         }
-        // Angle of the major axis: tan(2t) = 2b / (a - c).
-        let t = 0.5 * self.b.atan2(half_diff);
-        (l1, l2, [t.cos(), t.sin()])
+        let (x, y) = if half_diff >= 0.0 { (half_diff + radius, self.b) } else { (self.b, radius - half_diff) };
+        let sign = if x < 0.0 { -1.0 } else { 1.0 };
+        let len = sign * x.hypot(y);
+        (l1, l2, [x / len, y / len])
     }
 }
 
@@ -100,16 +103,22 @@ pub(crate) fn rotate_between(from: DVec3, to: DVec3, x: DVec3) -> DVec3 {
 /// at least [`FAST_PIVOT`] of its diagonal entry, where pivoting would
 /// change nothing.
 ///
-/// Returns the conditioning of the last `watch` unknowns: the largest
-/// diagonal entry `(A^-1)_kk` over them, which bounds how much a
-/// perturbation of the least-squares data moves them (for `A = X^T X`,
-/// `|dx_k| <= sqrt((A^-1)_kk) |dy|`). O(N^3), plus O(watch^3) for the test.
-pub(crate) fn solve_spd<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], tol: f64, watch: usize) -> Option<f64> {
+/// Also returns the block of `A^-1` over the last `watch <= 5` unknowns
+/// (local index `k` for unknown `N - watch + k`; zeros beyond `watch`): for
+/// least-squares normal equations `A = X^T X` it is the covariance factor of
+/// those unknowns, `|dx_k| <= sqrt((A^-1)_kk) |dy|` for a perturbation `dy`
+/// of the data. O(N^3), plus O(watch^2 N) for the block.
+pub(crate) fn solve_spd<const N: usize>(
+    a: &[[f64; N]; N],
+    b: &mut [f64; N],
+    tol: f64,
+    watch: usize,
+) -> Option<InverseBlock> {
     let mut x = *b;
-    if let Some(spread) = ldlt_solve(a, &mut x, watch) {
+    if let Some(block) = ldlt_solve(a, &mut x, watch) {
         if x.iter().all(|v| v.is_finite()) {
             *b = x;
-            return Some(spread);
+            return Some(block);
         }
     }
     let mut scale = [0.0; N];
@@ -127,12 +136,15 @@ pub(crate) fn solve_spd<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], tol
         }
         x[i] = b[i] * scale[i];
     }
-    let spread = pivoted_cholesky_solve(&mut m, &mut x, tol, &scale, watch)?;
+    let block = pivoted_cholesky_solve(&mut m, &mut x, tol, &scale, watch)?;
     for i in 0..N {
         b[i] = x[i] * scale[i];
     }
-    b.iter().all(|v| v.is_finite()).then_some(spread)
+    b.iter().all(|v| v.is_finite()).then_some(block)
 }
+
+/// A block of an inverse matrix (see [`solve_spd`]).
+pub(crate) type InverseBlock = [[f64; 5]; 5];
 
 /// Below this relative pivot, the plain factorization of [`solve_spd`]
 /// hands over to the pivoted one.
@@ -141,7 +153,7 @@ const FAST_PIVOT: f64 = 1e-5;
 /// `L D L^T` solve without pivoting (left-looking, no square roots: the
 /// fastest form for these tiny systems); `false` when a pivot `d_j` falls
 /// below [`FAST_PIVOT`] times `A_jj`.
-fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], watch: usize) -> Option<f64> {
+fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], watch: usize) -> Option<InverseBlock> {
     let mut l = [[0.0; N]; N];
     let mut dinv = [0.0; N];
     for j in 0..N {
@@ -181,23 +193,34 @@ fn ldlt_solve<const N: usize>(a: &[[f64; N]; N], b: &mut [f64; N], watch: usize)
             b[k] -= l[i][k] * bi;
         }
     }
-    // (A^-1)_kk = sum_j (L^-1 e_k)_j^2 / d_j.
-    let mut spread = 0.0f64;
-    for k in N - watch.min(N)..N {
-        let mut y = [0.0; N];
-        y[k] = 1.0;
-        let mut sum = dinv[k];
-        for i in k + 1..N {
+    // The trailing block of A^-1 = L^-T D^-1 L^-1 involves only the trailing
+    // blocks of L and D (L^-1 is block lower triangular): with Z = L22^-1,
+    // it is Z^T D2^-1 Z, O(watch^3).
+    let w = watch.min(N).min(5);
+    let base = N - w;
+    let mut z = [[0.0; 5]; 5];
+    for j in 0..w {
+        z[j][j] = 1.0;
+        for i in j + 1..w {
             let mut s = 0.0;
-            for m in k..i {
-                s -= l[i][m] * y[m];
+            for m in j..i {
+                s -= l[base + i][base + m] * z[m][j];
             }
-            y[i] = s;
-            sum += s * s * dinv[i];
+            z[i][j] = s;
         }
-        spread = spread.max(sum);
     }
-    Some(spread)
+    let mut block = [[0.0; 5]; 5];
+    for k in 0..w {
+        for c in 0..=k {
+            let mut v = 0.0;
+            for i in k..w {
+                v += z[i][k] * z[i][c] * dinv[base + i];
+            }
+            block[k][c] = v;
+            block[c][k] = v;
+        }
+    }
+    Some(block)
 }
 
 /// `L L^T x = x` with `L` in the lower triangle of `m`, column-oriented so
@@ -228,7 +251,7 @@ fn pivoted_cholesky_solve<const N: usize>(
     tol: f64,
     scale: &[f64; N],
     watch: usize,
-) -> Option<f64> {
+) -> Option<InverseBlock> {
     let mut perm = [0usize; N];
     for (k, p) in perm.iter_mut().enumerate() {
         *p = k;
@@ -274,24 +297,32 @@ fn pivoted_cholesky_solve<const N: usize>(
     for i in 0..N {
         x[perm[i]] = y[i];
     }
-    // (A^-1)_kk = scale_k^2 |L^-1 e_q|^2 with q the pivoted position of k.
-    let mut spread = 0.0f64;
-    for (k, sk) in scale.iter().enumerate().skip(N - watch.min(N)) {
+    // (A^-1)_kl = scale_k scale_l <L^-1 e_q(k), L^-1 e_q(l)> with q(k) the
+    // pivoted position of unknown k.
+    let w = watch.min(N).min(5);
+    let mut y = [[0.0; N]; 5];
+    for (local, yk) in y.iter_mut().enumerate().take(w) {
+        let k = N - w + local;
         let q = perm.iter().position(|&p| p == k).unwrap_or(0);
-        let mut y = [0.0; N];
-        y[q] = 1.0 / m[q][q];
-        let mut sum = y[q] * y[q];
+        yk[q] = 1.0 / m[q][q];
         for i in q + 1..N {
             let mut s = 0.0;
             for c in q..i {
-                s -= m[i][c] * y[c];
+                s -= m[i][c] * yk[c];
             }
-            y[i] = s / m[i][i];
-            sum += y[i] * y[i];
+            yk[i] = s / m[i][i];
         }
-        spread = spread.max(sum * sk * sk);
     }
-    Some(spread)
+    let mut block = [[0.0; 5]; 5];
+    for k in 0..w {
+        for l in 0..=k {
+            let dot: f64 = (0..N).map(|j| y[k][j] * y[l][j]).sum();
+            let v = dot * scale[N - w + k] * scale[N - w + l];
+            block[k][l] = v;
+            block[l][k] = v;
+        }
+    }
+    Some(block)
 }
 
 #[cfg(test)]
@@ -311,12 +342,16 @@ mod tests {
 
     #[test]
     fn eigen_of_rotated_diagonal() {
-        let (l1, l2, t) = (3.0, -1.0, 0.7f64);
-        let (c, s) = (t.cos(), t.sin());
-        let m = Sym2::new(l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c);
-        let (a, b, v) = m.eigen();
-        assert!((a - l1).abs() < 1e-14 && (b - l2).abs() < 1e-14);
-        assert!((v[0] * c + v[1] * s).abs() > 1.0 - 1e-14);
+        let (l1, l2) = (3.0, -1.0);
+        for t in [0.7f64, 1.2, -1.2, -0.3, 1.5, 0.0] {
+            let (c, s) = (t.cos(), t.sin());
+            let m = Sym2::new(l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c);
+            let (a, b, v) = m.eigen();
+            assert!((a - l1).abs() < 1e-14 && (b - l2).abs() < 1e-14);
+            assert!((v[0] * c + v[1] * s).abs() > 1.0 - 1e-14, "t {t}: {v:?}");
+            assert!(v[0] >= 0.0 && (v[0].hypot(v[1]) - 1.0).abs() < 1e-15);
+        }
+        assert_eq!(Sym2::new(2.0, 0.0, 2.0).eigen(), (2.0, 2.0, [1.0, 0.0]));
     }
 
     #[test]
@@ -353,17 +388,28 @@ mod tests {
     }
 
     #[test]
-    fn spread_is_the_inverse_diagonal() {
+    fn inverse_block_of_the_last_unknowns() {
         // A^-1 = [[3, -2, 1], [-2, 2, -1], [1, -1, 1]] (det 1).
         let a = [[1.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]];
-        for (watch, expected) in [(0, 0.0), (1, 1.0), (2, 2.0), (3, 3.0)] {
-            let spread = solve_spd(&a, &mut [1.0, 0.0, 0.0], 1e-14, watch).unwrap();
-            assert!((spread - expected).abs() < 1e-12, "watch {watch}: {spread}");
+        let inverse = [[3.0, -2.0, 1.0], [-2.0, 2.0, -1.0], [1.0, -1.0, 1.0]];
+        for watch in 0..=3 {
+            let block = solve_spd(&a, &mut [1.0, 0.0, 0.0], 1e-14, watch).unwrap();
+            for k in 0..5 {
+                for l in 0..5 {
+                    let expected = if k < watch && l < watch { inverse[3 - watch + k][3 - watch + l] } else { 0.0 };
+                    assert!((block[k][l] - expected).abs() < 1e-12, "watch {watch}: {block:?}");
+                }
+            }
         }
         // The same through the pivoted path: a pivot below FAST_PIVOT.
         let eps = 1e-7;
         let a = [[1.0, 1.0], [1.0, 1.0 + eps]];
-        let spread = solve_spd(&a, &mut [0.0, 1.0], 1e-14, 2).unwrap();
-        assert!((spread / ((1.0 + eps) / eps) - 1.0).abs() < 1e-6, "{spread}");
+        let block = solve_spd(&a, &mut [0.0, 1.0], 1e-14, 2).unwrap();
+        let inverse = [[(1.0 + eps) / eps, -1.0 / eps], [-1.0 / eps, 1.0 / eps]];
+        for k in 0..2 {
+            for l in 0..2 {
+                assert!((block[k][l] / inverse[k][l] - 1.0).abs() < 1e-6, "{block:?}");
+            }
+        }
     }
 }
