@@ -68,6 +68,10 @@ pub struct Args {
     /// Only operations whose name contains this text.
     #[arg(long)]
     only: Option<String>,
+    /// Leave out operations whose name contains any of these texts
+    /// (comma-separated), e.g. slow ones on a large mesh.
+    #[arg(long, value_delimiter = ',')]
+    skip: Vec<String>,
 }
 
 /// Median wall time in milliseconds; the output of each run is dropped after
@@ -100,7 +104,8 @@ pub fn run(args: &Args) -> Result<()> {
     let mut results = Map::new();
     for group in GROUPS {
         for mut op in group(&args.mesh, &data) {
-            if args.only.as_deref().is_some_and(|o| !op.name.contains(o)) {
+            let skipped = args.skip.iter().any(|s| op.name.contains(s.as_str()));
+            if skipped || args.only.as_deref().is_some_and(|o| !op.name.contains(o)) {
                 continue;
             }
             mesh_core::faer::set_global_parallelism(mesh_core::faer::Par::Seq);
