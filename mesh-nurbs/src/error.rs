@@ -124,7 +124,7 @@ pub enum NurbsError {
         reason: String,
     },
     /// The adaptive tessellation would need more segments than allowed.
-    #[error("chordal tolerance {tolerance} needs more than {max_segments} segments along {direction}")]
+    #[error("chordal tolerance {tolerance:e} needs more than {max_segments} segments along {direction}")]
     ToleranceUnreachable {
         /// The tolerance asked for.
         tolerance: f64,
