@@ -342,11 +342,7 @@ mod tests {
 
     #[test]
     fn shared_meshes_give_finite_distances() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-        if !dir.is_dir() {
-            eprintln!("skipping: {} is absent", dir.display());
-            return;
-        }
+        let Some(dir) = crate::commands::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
         for file in ["cgal_degtri_sliding.off", "cgal_holes.off", "npm_bunny.obj"] {
             let out = tmp.path().join(format!("{file}.ply"));

@@ -249,11 +249,7 @@ mod tests {
 
     #[test]
     fn shared_meshes_map_bijectively() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-        if !dir.is_dir() {
-            eprintln!("skipping: {} is absent", dir.display());
-            return;
-        }
+        let Some(dir) = crate::commands::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
         for file in ["cgal_degtri_sliding.off", "cgal_nefertiti.off", "cgal_holes.off"] {
             let out = tmp.path().join(format!("{file}.obj"));
