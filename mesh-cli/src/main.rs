@@ -37,7 +37,7 @@ enum Command {
     Curvature(commands::curvature::Args),
     /// Flattens a mesh onto the plane (Tutte, mean-value, harmonic, authalic, intrinsic, LSCM, ARAP), to an OBJ with UVs.
     Param(commands::param::Args),
-    /// Geodesic distance from source vertices (heat, fmm, dijkstra), to a PLY file; optional path to an OBJ polyline.
+    /// Geodesic distance from source vertices (heat, fmm, dijkstra, exact), to a PLY file; optional path to an OBJ polyline.
     Geodesic(commands::geodesic::Args),
     /// Tessellates an exact NURBS surface, with its exact curvatures, to a PLY file.
     Nurbs(commands::nurbs::Args),
