@@ -12,6 +12,7 @@
 //! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
+//! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //!
 //! ```
 //! use mesh_core::{shapes, operators, solver::Cholesky};
@@ -52,11 +53,13 @@ mod par;
 pub mod shapes;
 #[cfg(feature = "solver")]
 pub mod solver;
+pub mod submesh;
 
 pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
 pub use error::{MeshError, NonManifoldReport, Result};
 pub use ids::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::TriMesh;
+pub use submesh::SubMesh;
 
 #[cfg(feature = "solver")]
 pub use faer;

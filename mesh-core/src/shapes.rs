@@ -193,6 +193,42 @@ pub fn torus(major: f64, minor: f64, nu: usize, nv: usize) -> Result<TriMesh> {
     TriMesh::new(positions, faces)
 }
 
+/// An irregular torus: [`torus`] with the (u, v) grid parameters of every
+/// vertex jittered by up to `jitter` of a grid step (deterministically from
+/// `seed`) and each quad split along a random diagonal, so triangles are
+/// needles, obtuse and of varying valence, while every vertex stays exactly
+/// on the surface. Vertex `i * nv + j` sits near u = 2 pi i / nu,
+/// v = 2 pi j / nv; its exact curvature follows from its position (see
+/// [`torus`]: v = atan2(z, |(x, y)| - R)). `jitter` must lie in [0, 0.5).
+///
+/// Truth: as [`torus`] (V = nu nv, F = 2 nu nv, chi = 0, genus 1).
+pub fn irregular_torus(major: f64, minor: f64, nu: usize, nv: usize, jitter: f64, seed: u64) -> Result<TriMesh> {
+    if !(0.0..0.5).contains(&jitter) {
+        return Err(MeshError::InvalidOption { name: "jitter", reason: format!("{jitter} is not in [0, 0.5)") });
+    }
+    let regular = torus(major, minor, nu, nv)?;
+    let mut rng = SplitMix64(seed);
+    let (du, dv) = (TAU / nu as f64, TAU / nv as f64);
+    let positions = (0..nu * nv)
+        .map(|k| {
+            let u = (k / nv) as f64 * du + jitter * du * rng.next_signed();
+            let v = (k % nv) as f64 * dv + jitter * dv * rng.next_signed();
+            let rho = major + minor * v.cos();
+            DVec3::new(rho * u.cos(), rho * u.sin(), minor * v.sin())
+        })
+        .collect();
+    // Each quad [a, b, c], [a, c, d] becomes [a, b, d], [b, c, d] on a coin flip.
+    let mut faces = regular.into_parts().1;
+    for quad in faces.chunks_exact_mut(2) {
+        if rng.next_u64() & 1 == 1 {
+            let ([a, b, c], d) = (quad[0], quad[1][2]);
+            quad[0] = [a, b, d];
+            quad[1] = [b, c, d];
+        }
+    }
+    TriMesh::new(positions, faces)
+}
+
 /// Triangles of an `nu` x `nv` grid with vertex `i * nv + j`, periodic in `i`
 /// and, when `wrap_j`, in `j`; counter-clockwise in the (i, j) plane.
 fn periodic_grid_faces(nu: usize, nv: usize, wrap_j: bool) -> Vec<[u32; 3]> {
@@ -434,6 +470,22 @@ mod tests {
         let m = uv_sphere(2.0, 12, 6).unwrap();
         check(&m, 12 * 5 + 2, 2 * 12 * 5, 2, 0, 0);
         assert!(signed_volume(&m) > 0.0);
+    }
+
+    #[test]
+    fn irregular_torus_stays_on_the_surface() {
+        let m = irregular_torus(2.0, 0.5, 64, 16, 0.4, 7).unwrap();
+        check(&m, 1024, 2048, 0, 0, 1);
+        assert!(signed_volume(&m) > 0.0);
+        let flipped = m.faces().iter().zip(torus(2.0, 0.5, 64, 16).unwrap().faces()).filter(|(a, b)| a != b).count();
+        assert!(flipped > 500 && flipped < 1548, "{flipped} faces on the other diagonal");
+        for p in m.positions() {
+            let rho = (p.x * p.x + p.y * p.y).sqrt();
+            assert!(((rho - 2.0).hypot(p.z) - 0.5).abs() < 1e-12);
+        }
+        let areas = crate::geometry::face_areas(&m);
+        assert!(areas.iter().all(|a| *a > 0.0));
+        assert!(irregular_torus(2.0, 0.5, 8, 8, 0.5, 0).is_err());
     }
 
     #[test]

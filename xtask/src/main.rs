@@ -1,6 +1,6 @@
 //! Project automation, one subcommand per module (the rust-analyzer layout):
 //!
-//! - `cargo xtask validate [--json PATH]`: every crate against analytic ground
+//! - `cargo xtask validate [--json PATH] [--scale]`: every crate against analytic ground
 //!   truth and invariants; prints one table, writes a JSON report, exits
 //!   non-zero on any miss.
 //! - `cargo xtask bench --mesh PATH [--json OUT] [--runs N]`: times every

