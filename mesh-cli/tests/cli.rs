@@ -88,6 +88,26 @@ fn defects_are_counted_without_panic() {
 }
 
 #[test]
+fn clean_manifold_repairs_the_dirty_dragon_scan() {
+    let Some(data) = shared_data() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("clean.ply");
+    let input = data.join("npm_dragon_res3.ply");
+    let summary = json(&["clean", "--manifold", "--json", input.to_str().unwrap(), out.to_str().unwrap()]);
+    assert_eq!(summary["manifold"], true);
+    assert_eq!(summary["duplicate_faces"], 1254);
+    // The shared data README: 1,564 non-manifold edges remain after dropping duplicates.
+    assert_eq!(summary["fin_edges"], 1564);
+    assert_eq!(summary["unorientable_components"], 0);
+    let info = json(&["info", "--json", out.to_str().unwrap()]);
+    assert_eq!(info["manifold"], true);
+    assert_eq!((info["non_manifold_edges"].clone(), info["faces"].clone()), (0.into(), summary["faces"].clone()));
+    // Without --manifold the result says it is not a manifold.
+    let plain = json(&["clean", "--json", input.to_str().unwrap(), out.to_str().unwrap()]);
+    assert_eq!(plain["manifold"], false);
+}
+
+#[test]
 fn refuses_to_overwrite_the_input() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("m.off");

@@ -14,6 +14,7 @@ use std::sync::OnceLock;
 
 use crate::error::{MeshError, NonManifoldReport, Result};
 use crate::ids::{EdgeId, FaceId, HalfedgeId, VertexId};
+use crate::union_find::UnionFind;
 
 /// What the neighbourhood of a vertex looks like.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -177,7 +178,7 @@ impl Connectivity {
 
         // Classify each vertex by its fans and order manifold rings counter-clockwise.
         let mut vertex_kind = vec![VertexKind::Isolated; vertex_count];
-        let mut parent: Vec<u32> = Vec::new();
+        let mut fans_of = UnionFind::new(0);
         let mut ordered: Vec<HalfedgeId> = Vec::new();
         for v in 0..vertex_count {
             let range = vertex_offsets[v] as usize..vertex_offsets[v + 1] as usize;
@@ -187,8 +188,7 @@ impl Connectivity {
                 continue;
             }
             // Union the incident faces across edges at v that have exactly two faces.
-            parent.clear();
-            parent.extend(0..d as u32);
+            fans_of.reset(d);
             let mut on_boundary = false;
             for (i, &h) in ring.iter().enumerate() {
                 for g in [h, h.prev()] {
@@ -200,13 +200,13 @@ impl Connectivity {
                             let other = if pair[0] == g { pair[1] } else { pair[0] };
                             // The other face's half-edge leaving v.
                             let out = if corner_vertex[other.idx()].idx() == v { other } else { other.next() };
-                            union(&mut parent, i as u32, slot_in_ring[out.idx()]);
+                            fans_of.union(i as u32, slot_in_ring[out.idx()]);
                         }
                         _ => {}
                     }
                 }
             }
-            let fans = (0..d as u32).filter(|&i| find(&mut parent, i) == i).count();
+            let fans = (0..d as u32).filter(|&i| fans_of.find(i) == i).count();
             vertex_kind[v] = if fans > 1 || nonmanifold_edge_vertex[v] {
                 if fans > 1 && !nonmanifold_edge_vertex[v] {
                     report.vertices.push(VertexId::new(v));
@@ -454,10 +454,10 @@ impl Connectivity {
     pub fn components(&self) -> &Components {
         self.components.get_or_init(|| {
             let n = self.vertex_count();
-            let mut parent: Vec<u32> = (0..n as u32).collect();
+            let mut sets = UnionFind::new(n);
             for f in self.corner_vertex.chunks_exact(3) {
-                union(&mut parent, f[0].0, f[1].0);
-                union(&mut parent, f[0].0, f[2].0);
+                sets.union(f[0].0, f[1].0);
+                sets.union(f[0].0, f[2].0);
             }
             let mut label = vec![u32::MAX; n];
             let mut count = 0u32;
@@ -466,7 +466,7 @@ impl Connectivity {
                 if self.vertex_kind[v] == VertexKind::Isolated {
                     continue;
                 }
-                let r = find(&mut parent, v as u32) as usize;
+                let r = sets.find(v as u32) as usize;
                 if label[r] == u32::MAX {
                     label[r] = count;
                     count += 1;
@@ -519,23 +519,6 @@ impl Connectivity {
         let c = self.components().count as i64;
         let twice = 2 * c - b - self.euler_characteristic();
         (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u64)
-    }
-}
-
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let p = parent[i as usize];
-        parent[i as usize] = parent[p as usize];
-        i = p;
-    }
-    i
-}
-
-fn union(parent: &mut [u32], a: u32, b: u32) {
-    let (ra, rb) = (find(parent, a), find(parent, b));
-    if ra != rb {
-        let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-        parent[hi as usize] = lo;
     }
 }
 

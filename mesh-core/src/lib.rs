@@ -13,6 +13,7 @@
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
+//! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
 //!
 //! ```
 //! use mesh_core::{shapes, operators, solver::Cholesky};
@@ -54,6 +55,7 @@ pub mod shapes;
 #[cfg(feature = "solver")]
 pub mod solver;
 pub mod submesh;
+pub mod union_find;
 
 pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
 pub use error::{MeshError, NonManifoldReport, Result};

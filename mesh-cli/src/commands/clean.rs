@@ -17,6 +17,11 @@ pub struct Args {
     /// Weld vertices closer than this distance (default: identical positions only).
     #[arg(long, default_value_t = 0.0)]
     weld: f64,
+    /// Make the result an oriented manifold: edges with three or more faces
+    /// keep their best-continuing pair and detach the others, unorientable
+    /// gluing is cut, vertices with several fans are split (one copy per fan).
+    #[arg(long)]
+    manifold: bool,
     /// Do not flip faces to a consistent (outward) orientation.
     #[arg(long)]
     no_orient: bool,
@@ -35,24 +40,34 @@ struct Summary {
     degenerate_faces: usize,
     duplicate_faces: usize,
     unreferenced_vertices: usize,
+    fin_edges: usize,
+    detached_faces: usize,
+    cut_edges: usize,
+    split_vertices: usize,
     flipped_faces: usize,
     unorientable_components: usize,
     vertices: usize,
     faces: usize,
+    manifold: bool,
 }
 
 impl Summary {
-    fn new(r: &CleanReport, vertices: usize, faces: usize) -> Self {
+    fn new(r: &CleanReport, mesh: &mesh_core::TriMesh) -> Self {
         Self {
             welded_vertices: r.welded_vertices,
             collapsed_faces: r.collapsed_faces,
             degenerate_faces: r.degenerate_faces,
             duplicate_faces: r.duplicate_faces,
             unreferenced_vertices: r.unreferenced_vertices,
+            fin_edges: r.fin_edges,
+            detached_faces: r.detached_faces,
+            cut_edges: r.cut_edges,
+            split_vertices: r.split_vertices,
             flipped_faces: r.flipped_faces,
             unorientable_components: r.unorientable_components,
-            vertices,
-            faces,
+            vertices: mesh.vertex_count(),
+            faces: mesh.face_count(),
+            manifold: mesh.connectivity().require_manifold().is_ok(),
         }
     }
 }
@@ -61,11 +76,16 @@ impl Summary {
 pub fn run(args: &Args) -> CliResult<()> {
     check_not_input(&args.output, Some(&args.input), args.force)?;
     let data = mesh_io::read(&args.input)?;
-    let options = CleanOptions { weld_tolerance: Some(args.weld), orient: !args.no_orient, ..CleanOptions::default() };
+    let options = CleanOptions {
+        weld_tolerance: Some(args.weld),
+        manifold: args.manifold,
+        orient: !args.no_orient,
+        ..CleanOptions::default()
+    };
     let (mesh, report) = data.mesh.cleaned(&options)?;
     ensure_parent(&args.output)?;
     mesh_io::write(&args.output, &mesh, &mesh_io::WriteOptions::default())?;
-    let summary = Summary::new(&report, mesh.vertex_count(), mesh.face_count());
+    let summary = Summary::new(&report, &mesh);
     if args.json {
         print_json(&summary)
     } else {
@@ -75,9 +95,16 @@ pub fn run(args: &Args) -> CliResult<()> {
         println!("  degenerate faces         {}", summary.degenerate_faces);
         println!("  duplicate faces          {}", summary.duplicate_faces);
         println!("  unreferenced vertices    {}", summary.unreferenced_vertices);
+        if args.manifold {
+            println!("  fin edges (3+ faces)     {}", summary.fin_edges);
+            println!("  detached faces           {}", summary.detached_faces);
+            println!("  cut edges                {}", summary.cut_edges);
+            println!("  split vertices           {}", summary.split_vertices);
+        }
         println!("  flipped faces            {}", summary.flipped_faces);
         println!("  unorientable components  {}", summary.unorientable_components);
-        println!("  result                   {} vertices, {} faces", summary.vertices, summary.faces);
+        let manifold = if summary.manifold { "oriented manifold" } else { "not an oriented manifold (see --manifold)" };
+        println!("  result                   {} vertices, {} faces, {manifold}", summary.vertices, summary.faces);
         Ok(())
     }
 }

@@ -1,14 +1,22 @@
 //! Repairing triangle soups: weld coincident vertices, drop collapsed,
-//! degenerate and duplicate faces and unreferenced vertices, and orient faces
-//! consistently, with a report of every change.
+//! degenerate and duplicate faces and unreferenced vertices, make the mesh an
+//! oriented manifold (resolving fins, unorientable gluing and non-manifold
+//! vertices) and orient faces consistently, with a report of every change.
 //!
 //! STL files store loose triangles, so readers weld with [`weld_vertices`]
 //! before building a [`TriMesh`]; [`clean`] does the whole repair.
 
+mod manifold;
+mod orient;
+mod weld;
+
+pub use orient::orient_faces;
+pub use weld::weld_vertices;
+
 use glam::DVec3;
 
 use crate::error::{MeshError, Result};
-use crate::ids::{FaceId, HalfedgeId, VertexId};
+use crate::ids::{FaceId, VertexId};
 use crate::mesh::TriMesh;
 
 /// What [`clean`] should do. Every step is on by default except welding with
@@ -27,6 +35,14 @@ pub struct CleanOptions {
     pub drop_duplicates: bool,
     /// Drop vertices that no face references (renumbering the rest in order).
     pub drop_unreferenced: bool,
+    /// Make the mesh an oriented 2-manifold by cutting (default off): each
+    /// edge with three or more faces keeps its best-continuing pair of faces
+    /// and detaches the others, gluing that cannot be oriented is cut open,
+    /// and every vertex with several fans of faces is split into one vertex
+    /// per fan. Runs after welding and the removal of collapsed, degenerate
+    /// and duplicate faces (a duplicate face makes every edge of its original
+    /// a fin). Cost O(F) per pass, one pass on almost every mesh.
+    pub manifold: bool,
     /// Flip faces so that neighbours agree, and closed components face outward.
     pub orient: bool,
 }
@@ -39,6 +55,7 @@ impl Default for CleanOptions {
             degenerate_tolerance: 1e-12,
             drop_duplicates: true,
             drop_unreferenced: true,
+            manifold: false,
             orient: true,
         }
     }
@@ -57,10 +74,20 @@ pub struct CleanReport {
     pub duplicate_faces: usize,
     /// Unreferenced vertices dropped.
     pub unreferenced_vertices: usize,
+    /// Edges shared by three or more faces, resolved by [`CleanOptions::manifold`].
+    pub fin_edges: usize,
+    /// Faces detached from a fin edge (the edge kept a better pair), or
+    /// given vertices of their own when a cut could not be made otherwise.
+    pub detached_faces: usize,
+    /// Edges cut open so that every component can be oriented.
+    pub cut_edges: usize,
+    /// Vertex copies added so that every vertex has a single fan of faces.
+    pub split_vertices: usize,
     /// Faces whose orientation was reversed.
     pub flipped_faces: usize,
-    /// Components that admit no consistent orientation (Moebius-like) or
-    /// contain non-manifold edges, left as they were.
+    /// Connected components holding a patch of faces that admits no
+    /// consistent orientation (Moebius-like), left as they were. Always 0
+    /// with [`CleanOptions::manifold`], which cuts such patches open.
     pub unorientable_components: usize,
 }
 
@@ -68,100 +95,6 @@ impl CleanReport {
     /// `true` when nothing changed.
     pub fn is_unchanged(&self) -> bool {
         *self == Self { unorientable_components: self.unorientable_components, ..Self::default() }
-    }
-}
-
-/// Merges vertices within `tolerance` of each other (transitively), keeping the
-/// position of the lowest-indexed vertex of each cluster, and rewrites `faces`.
-/// Returns the welded positions, faces (which may now repeat a vertex) and the
-/// number of merged vertices. Vertex order is kept.
-///
-/// Exact welding (`tolerance == 0`) sorts positions; with a tolerance, points
-/// are sorted into cells of that size and each is compared with the 27
-/// neighbouring cells. Cost O(n log n). Non-finite or negative tolerances
-/// are an error.
-pub fn weld_vertices(
-    positions: &[DVec3],
-    faces: &[[u32; 3]],
-    tolerance: f64,
-) -> Result<(Vec<DVec3>, Vec<[u32; 3]>, usize)> {
-    if !(tolerance >= 0.0 && tolerance.is_finite()) {
-        return Err(MeshError::InvalidOption { name: "weld_tolerance", reason: format!("{tolerance} is not >= 0") });
-    }
-    let n = positions.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    if tolerance == 0.0 {
-        // Sort (bit pattern, index) pairs computed once; -0.0 and 0.0 weld.
-        let key = |p: DVec3| [p.x, p.y, p.z].map(|c| if c == 0.0 { 0u64 } else { c.to_bits() });
-        let mut keyed: Vec<([u64; 3], u32)> = positions.iter().enumerate().map(|(i, &p)| (key(p), i as u32)).collect();
-        keyed.sort_unstable();
-        for w in keyed.windows(2) {
-            if w[0].0 == w[1].0 {
-                let root = parent[w[0].1 as usize];
-                parent[w[1].1 as usize] = root;
-            }
-        }
-    } else {
-        let cell = |p: DVec3| {
-            let c = (p / tolerance).floor();
-            [c.x, c.y, c.z].map(|x| x.clamp(i64::MIN as f64, i64::MAX as f64) as i64)
-        };
-        let mut order: Vec<([i64; 3], u32)> = (0..n).map(|i| (cell(positions[i]), i as u32)).collect();
-        order.sort_unstable();
-        let tol2 = tolerance * tolerance;
-        for &(c, i) in &order {
-            for dx in -1..=1i64 {
-                for dy in -1..=1i64 {
-                    for dz in -1..=1i64 {
-                        let nc = [c[0].saturating_add(dx), c[1].saturating_add(dy), c[2].saturating_add(dz)];
-                        let lo = order.partition_point(|(k, _)| *k < nc);
-                        for &(k, j) in &order[lo..] {
-                            if k != nc {
-                                break;
-                            }
-                            if j < i && positions[i as usize].distance_squared(positions[j as usize]) <= tol2 {
-                                union_min(&mut parent, i, j);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        for i in 0..n as u32 {
-            let r = find(&mut parent, i);
-            parent[i as usize] = r;
-        }
-    }
-    // parent[i] now points at the lowest index of i's cluster.
-    let mut remap = vec![0u32; n];
-    let mut welded = Vec::with_capacity(n);
-    for i in 0..n {
-        let root = parent[i] as usize;
-        if root == i {
-            remap[i] = welded.len() as u32;
-            welded.push(positions[i]);
-        } else {
-            remap[i] = remap[root];
-        }
-    }
-    let merged = n - welded.len();
-    let faces = faces.iter().map(|f| f.map(|v| remap[v as usize])).collect();
-    Ok((welded, faces, merged))
-}
-
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let p = parent[i as usize];
-        parent[i as usize] = parent[p as usize];
-        i = p;
-    }
-    i
-}
-
-fn union_min(parent: &mut [u32], a: u32, b: u32) {
-    let (ra, rb) = (find(parent, a), find(parent, b));
-    if ra != rb {
-        parent[ra.max(rb) as usize] = ra.min(rb);
     }
 }
 
@@ -250,6 +183,19 @@ pub fn clean(positions: Vec<DVec3>, faces: Vec<[u32; 3]>, options: &CleanOptions
         let mut k = keep.iter();
         faces.retain(|_| *k.next().unwrap_or(&true));
     }
+    // Faces keep their index through the manifold repair; track their flips.
+    let mut flipped = vec![false; faces.len()];
+    let (positions, faces) = if options.manifold {
+        let (p, f, repair) = manifold::make_manifold(positions, faces)?;
+        report.fin_edges = repair.fin_edges;
+        report.detached_faces = repair.detached_faces;
+        report.cut_edges = repair.cut_edges;
+        report.split_vertices = repair.split_vertices;
+        flipped = repair.flipped;
+        (p, f)
+    } else {
+        (positions, faces)
+    };
     let (positions, faces) = if options.drop_unreferenced {
         let unused = unreferenced_vertices(positions.len(), &faces);
         report.unreferenced_vertices = unused.len();
@@ -259,19 +205,20 @@ pub fn clean(positions: Vec<DVec3>, faces: Vec<[u32; 3]>, options: &CleanOptions
     };
     let mut mesh = TriMesh::new(positions, faces)?;
     if options.orient {
-        let (flipped, unorientable) = orient_faces(&mesh);
+        let (flip, unorientable) = orient_faces(&mesh);
         report.unorientable_components = unorientable;
-        if flipped.iter().any(|&f| f) {
-            report.flipped_faces = flipped.iter().filter(|&&f| f).count();
+        if flip.iter().any(|&f| f) {
             let (p, mut f) = mesh.into_parts();
-            for (tri, &flip) in f.iter_mut().zip(&flipped) {
+            for ((tri, &flip), flipped) in f.iter_mut().zip(&flip).zip(&mut flipped) {
                 if flip {
                     tri.swap(1, 2);
+                    *flipped = !*flipped;
                 }
             }
             mesh = TriMesh::new(p, f)?;
         }
     }
+    report.flipped_faces = flipped.iter().filter(|&&f| f).count();
     Ok((mesh, report))
 }
 
@@ -294,89 +241,6 @@ fn compact_vertices(positions: Vec<DVec3>, mut faces: Vec<[u32; 3]>) -> (Vec<DVe
         *f = f.map(|v| remap[v as usize]);
     }
     (kept, faces)
-}
-
-/// Decides which faces to flip so that every manifold edge is traversed in
-/// opposite directions by its two faces, and closed components enclose a
-/// positive volume. Returns the flip flags and the number of components that
-/// cannot be oriented (left untouched). Breadth-first over faces, O(F).
-pub fn orient_faces(mesh: &TriMesh) -> (Vec<bool>, usize) {
-    let conn = mesh.connectivity();
-    let nf = mesh.face_count();
-    let mut flip = vec![false; nf];
-    let mut seen = vec![false; nf];
-    let mut unorientable = 0;
-    let mut queue = Vec::new();
-    let mut component = Vec::new();
-    for seed in 0..nf {
-        if seen[seed] {
-            continue;
-        }
-        seen[seed] = true;
-        queue.clear();
-        component.clear();
-        queue.push(seed);
-        let mut ok = true;
-        let mut closed = true;
-        while let Some(f) = queue.pop() {
-            component.push(f);
-            for k in 0..3 {
-                let h = HalfedgeId::of_corner(FaceId::new(f), k);
-                let e = conn.edge(h);
-                let hs = conn.edge_halfedges(e);
-                if hs.len() != 2 {
-                    closed = false;
-                    if hs.len() > 2 {
-                        ok = false;
-                    }
-                    continue;
-                }
-                let g = if hs[0] == h { hs[1] } else { hs[0] };
-                let nb = g.face().idx();
-                // Same direction in the input means the faces disagree.
-                let same_dir = conn.origin(g) == conn.origin(h);
-                let want = flip[f] ^ same_dir;
-                if seen[nb] {
-                    if flip[nb] != want {
-                        ok = false;
-                    }
-                } else {
-                    seen[nb] = true;
-                    flip[nb] = want;
-                    queue.push(nb);
-                }
-            }
-        }
-        if !ok {
-            unorientable += 1;
-            for &f in &component {
-                flip[f] = false;
-            }
-            continue;
-        }
-        if closed {
-            // Signed volume by the divergence theorem; make it positive.
-            let p = mesh.positions();
-            let volume: f64 = component
-                .iter()
-                .map(|&f| {
-                    let [a, b, c] = mesh.faces()[f].map(|v| p[v as usize]);
-                    let v = a.dot(b.cross(c));
-                    if flip[f] {
-                        -v
-                    } else {
-                        v
-                    }
-                })
-                .sum();
-            if volume < 0.0 {
-                for &f in &component {
-                    flip[f] = !flip[f];
-                }
-            }
-        }
-    }
-    (flip, unorientable)
 }
 
 impl TriMesh {
