@@ -144,6 +144,24 @@ fn report_writes_viewer_files() {
         assert!(out.join(f.as_str().unwrap()).is_file(), "{f}");
     }
     assert!(out.join("report.json").is_file());
+    assert_eq!(v["warnings"], serde_json::json!([]), "a clean cube needs no warning");
+}
+
+#[test]
+fn report_warns_about_what_the_input_lacks() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("two.off");
+    // Two triangles of a square whose diagonal vertices are duplicated (the
+    // square is cut along the diagonal), and a lone third triangle far away.
+    let off = "OFF\n9 3 0\n0 0 0\n1 0 0\n1 1 0\n0 0 0\n1 1 0\n0 1 0\n5 5 0\n6 5 0\n5 6 0\n\
+               3 0 1 2\n3 3 4 5\n3 6 7 8\n";
+    std::fs::write(&path, off).unwrap();
+    let out = dir.path().join("out");
+    let v = json(&["report", path.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let warnings: Vec<&str> = v["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap()).collect();
+    assert!(warnings.iter().any(|w| w.starts_with("2 vertices sit exactly on another")), "{warnings:?}");
+    assert!(warnings.iter().any(|w| w.starts_with("3 connected components")), "{warnings:?}");
+    assert_eq!(v["sections"]["info"]["coincident_vertices"], 2);
 }
 
 #[test]

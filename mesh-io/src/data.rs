@@ -84,6 +84,36 @@ pub struct ReadReport {
     pub notes: Vec<String>,
 }
 
+impl std::fmt::Display for ReadReport {
+    /// The changes in one line, e.g. `2 polygons triangulated, 1 face dropped`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let plural = |n: usize, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
+        let mut parts = Vec::new();
+        if self.polygons_triangulated > 0 {
+            parts.push(format!("{} triangulated", plural(self.polygons_triangulated, "polygon")));
+        }
+        if self.faces_dropped > 0 {
+            parts.push(format!("{} dropped", plural(self.faces_dropped, "face")));
+        }
+        if self.vertices_welded > 0 {
+            parts.push(format!(
+                "{} welded",
+                if self.vertices_welded == 1 {
+                    "1 vertex".into()
+                } else {
+                    format!("{} vertices", self.vertices_welded)
+                }
+            ));
+        }
+        parts.extend(self.notes.iter().cloned());
+        if parts.is_empty() {
+            f.write_str("nothing changed")
+        } else {
+            f.write_str(&parts.join("; "))
+        }
+    }
+}
+
 impl ReadReport {
     /// `true` when the mesh is exactly what the file says.
     pub fn is_clean(&self) -> bool {
@@ -264,6 +294,11 @@ mod tests {
         report.triangulate(&[5, 6], |_, _| panic!("too short"));
         assert_eq!((report.polygons_triangulated, report.faces_dropped), (1, 2));
         assert!(!report.is_clean());
+        assert_eq!(report.to_string(), "1 polygon triangulated; 2 faces dropped");
+        report.vertices_welded = 1;
+        report.notes.push("normals ignored".into());
+        assert_eq!(report.to_string(), "1 polygon triangulated; 2 faces dropped; 1 vertex welded; normals ignored");
+        assert_eq!(ReadReport::default().to_string(), "nothing changed");
     }
 
     #[test]

@@ -53,6 +53,19 @@ impl Format {
         }
     }
 
+    /// The axis that points up by the format's convention: +Y for glTF (its
+    /// specification says so) and for OBJ, PLY and OFF (the practice of
+    /// modelling tools and of scan repositories such as Stanford's), +Z for
+    /// STL (3D printing). A file cannot say otherwise, so this is a default
+    /// for viewers, never a fact about the data.
+    pub fn conventional_up(self) -> mesh_core::glam::DVec3 {
+        use mesh_core::glam::DVec3;
+        match self {
+            Format::Stl => DVec3::Z,
+            Format::Obj | Format::Off | Format::Ply | Format::Gltf | Format::Glb => DVec3::Y,
+        }
+    }
+
     /// Guesses the format from the first bytes of the content (`None` when
     /// nothing matches). OBJ has no magic: text starting with `v`, `f`, `o`,
     /// `g`, `mtllib` or a `#` comment is taken for OBJ.

@@ -48,6 +48,9 @@ pub struct Info {
     pub duplicate_faces: usize,
     /// Vertices no face uses.
     pub unreferenced_vertices: usize,
+    /// Vertices at exactly the position of a lower-numbered vertex, which
+    /// exact welding would merge (a surface cut along coincident vertices).
+    pub coincident_vertices: usize,
     /// Total surface area.
     pub area: f64,
     /// Signed enclosed volume (meaningful for closed meshes).
@@ -82,6 +85,7 @@ impl Info {
             degenerate_faces: clean::degenerate_faces(mesh, clean::CleanOptions::default().degenerate_tolerance).len(),
             duplicate_faces: clean::duplicate_faces(mesh.faces()).len(),
             unreferenced_vertices: clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).len(),
+            coincident_vertices: clean::weld_vertices(mesh.positions(), &[], 0.0).map_or(0, |(_, _, merged)| merged),
             area: geometry::surface_area(mesh),
             volume: if closed { finite(geometry::enclosed_volume(mesh)) } else { None },
             mean_edge_length: geometry::mean_edge_length(mesh),
@@ -107,6 +111,7 @@ impl Info {
         println!("  degenerate faces   {}", self.degenerate_faces);
         println!("  duplicate faces    {}", self.duplicate_faces);
         println!("  unreferenced verts {}", self.unreferenced_vertices);
+        println!("  coincident verts   {}", self.coincident_vertices);
         println!("  area               {:.6}", self.area);
         if let Some(v) = self.volume {
             println!("  volume             {v:.6}");

@@ -30,19 +30,25 @@ pub struct Args {
     /// Camera elevation in degrees.
     #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
     elevation: f64,
-    /// The axis pointing up in the picture: x, y or z.
-    #[arg(long, default_value = "z")]
+    /// The axis pointing up in the picture: x, y, z, or auto (the file
+    /// format's convention: y for OBJ, PLY, OFF and glTF, z for STL and for
+    /// built-in shapes).
+    #[arg(long, default_value = "auto")]
     up: String,
 }
 
-/// The unit vector of an axis name.
-pub fn axis(name: &str) -> CliResult<mesh_core::glam::DVec3> {
+/// The unit vector of an axis name; `auto` is the convention of the input
+/// file's format ([`mesh_io::Format::conventional_up`]), z for built-in shapes.
+pub fn axis(name: &str, input: &InputArgs) -> CliResult<mesh_core::glam::DVec3> {
     use mesh_core::glam::DVec3;
     match name {
         "x" => Ok(DVec3::X),
         "y" => Ok(DVec3::Y),
         "z" => Ok(DVec3::Z),
-        _ => Err(format!("--up must be x, y or z, not `{name}`").into()),
+        "auto" => {
+            Ok(input.path().and_then(|p| mesh_io::Format::from_path(p).ok()).map_or(DVec3::Z, |f| f.conventional_up()))
+        }
+        _ => Err(format!("--up must be x, y, z or auto, not `{name}`").into()),
     }
 }
 
@@ -65,7 +71,8 @@ pub fn run(args: &Args) -> CliResult<()> {
         height: args.height,
         azimuth: args.azimuth,
         elevation: args.elevation,
-        up: axis(&args.up)?,
+        up: axis(&args.up, &args.input)?,
+        title: args.field.clone(),
     };
     ensure_parent(&args.out)?;
     render_png(&data.mesh, scalar, &args.out, &options)?;

@@ -33,10 +33,28 @@ pub struct Args {
     /// Dihedral angle, in degrees, above which an edge is a feature edge.
     #[arg(long, default_value_t = 30.0)]
     feature_angle: f64,
-    /// The axis pointing up in the pictures: x, y or z.
-    #[arg(long, default_value = "z")]
+    /// The axis pointing up in the pictures: x, y, z, or auto (the file
+    /// format's convention: y for OBJ, PLY, OFF and glTF, z for STL and for
+    /// built-in shapes).
+    #[arg(long, default_value = "auto")]
     up: String,
 }
+
+/// The caption of each field's picture: what it is and its unit, with L the
+/// file's unit of length (a mesh file does not say which it is).
+const CAPTIONS: &[(&str, &str)] = &[
+    ("gaussian", "gaussian curvature K [1/L^2]"),
+    ("mean", "mean curvature H [1/L]"),
+    ("k1", "principal curvature k1 [1/L]"),
+    ("k2", "principal curvature k2 [1/L]"),
+    ("gaussian_discrete", "angle defect / area [1/L^2]"),
+    ("mean_discrete", "cotan mean curvature / area [1/L]"),
+    ("gaussian_integrated", "angle defect [rad]"),
+    ("mean_integrated", "integrated mean curvature [L]"),
+    ("distance", "geodesic distance [L]"),
+    ("harmonic1", "first non-constant harmonic [1/L]"),
+    ("hks", "heat kernel signature [1/L^2]"),
+];
 
 /// What the report collects: JSON sections, timings, per-vertex fields and
 /// the files written.
@@ -48,6 +66,9 @@ struct Report<'a> {
     timings_ms: Map<String, Value>,
     fields: Vec<(&'static str, Vec<f64>)>,
     files: Vec<String>,
+    /// What a reader of the report must know: defects of the input, work
+    /// done on a part of it, values flagged as untrustworthy.
+    warnings: Vec<String>,
 }
 
 impl Report<'_> {
@@ -72,10 +93,18 @@ impl Report<'_> {
         self.sections.insert(name.into(), value);
     }
 
-    /// Keeps a per-vertex field for `mesh.ply` and renders it.
+    /// Records a warning for the top of `report.json`.
+    fn warn(&mut self, warning: impl Into<String>) {
+        self.warnings.push(warning.into());
+    }
+
+    /// Keeps a per-vertex field for `mesh.ply` and renders it, with a colour
+    /// bar captioned from [`CAPTIONS`].
     fn field(&mut self, mesh: &TriMesh, name: &'static str, values: Vec<f64>) -> CliResult<()> {
         let png = self.file(&format!("{name}.png"))?;
-        render_png(mesh, Some(&values), &png, &self.picture)?;
+        let caption = CAPTIONS.iter().find(|(n, _)| *n == name).map_or(name, |(_, c)| c);
+        let picture = RenderOptions { title: Some(caption.to_owned()), ..self.picture.clone() };
+        render_png(mesh, Some(&values), &png, &picture)?;
         self.fields.push((name, values));
         Ok(())
     }
@@ -86,7 +115,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     if !(args.feature_angle.is_finite() && (0.0..=180.0).contains(&args.feature_angle)) {
         return Err(format!("--feature-angle must be in [0, 180], got {}", args.feature_angle).into());
     }
-    let picture = RenderOptions { up: super::render::axis(&args.up)?, ..RenderOptions::default() };
+    let picture = RenderOptions { up: super::render::axis(&args.up, &args.input)?, ..RenderOptions::default() };
     std::fs::create_dir_all(&args.out).map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     let mut report = Report {
         dir: args.out.clone(),
@@ -96,11 +125,13 @@ pub fn run(args: &Args) -> CliResult<()> {
         timings_ms: Map::new(),
         fields: Vec::new(),
         files: Vec::new(),
+        warnings: Vec::new(),
     };
     let data = report.time("read", || args.input.load())?;
     let mesh = &data.mesh;
     let info = report.time("info", || Info::of(mesh));
     report.sections.insert("info".into(), serde_json::to_value(&info)?);
+    input_warnings(&mut report, &info, &data.report);
 
     let operators = operators_section(&mut report, mesh, args.feature_angle);
     report.section("operators", operators);
@@ -127,6 +158,7 @@ pub fn run(args: &Args) -> CliResult<()> {
 
     let summary = json!({
         "input": args.input.describe(),
+        "warnings": report.warnings,
         "sections": report.sections,
         "timings_ms": report.timings_ms,
         "fields": report.fields.iter().map(|(n, _)| *n).collect::<Vec<_>>(),
@@ -137,6 +169,43 @@ pub fn run(args: &Args) -> CliResult<()> {
     println!("{}", serde_json::to_string_pretty(&summary)?);
     eprintln!("wrote {} and {} files in {}", json_path.display(), report.files.len(), args.out.display());
     Ok(())
+}
+
+/// What the input's defects mean for the analyses that follow.
+fn input_warnings(report: &mut Report, info: &Info, read: &mesh_io::ReadReport) {
+    if !read.is_clean() {
+        report.warn(format!("reading the file changed it: {read}"));
+    }
+    if info.coincident_vertices > 0 {
+        report.warn(format!(
+            "{} vertices sit exactly on another vertex without sharing its index: the surface is cut there \
+             (`mesh clean` welds them)",
+            info.coincident_vertices
+        ));
+    }
+    if info.components > 1 {
+        report.warn(format!("{} connected components: distances do not cross between them", info.components));
+    }
+    if !info.manifold {
+        report.warn(format!(
+            "not an oriented manifold ({} non-manifold edges, {} non-manifold vertices, {} inconsistent edges): \
+             sections that need one run on a repaired copy (`mesh clean --manifold`)",
+            info.non_manifold_edges, info.non_manifold_vertices, info.inconsistent_edges
+        ));
+    }
+    if info.degenerate_faces > 0 {
+        report.warn(format!(
+            "{} zero-area faces: cotangent weights are undefined there (intrinsic Delaunay operators are used \
+             where it matters)",
+            info.degenerate_faces
+        ));
+    }
+    if info.duplicate_faces > 0 {
+        report.warn(format!("{} duplicate faces", info.duplicate_faces));
+    }
+    if info.unreferenced_vertices > 0 {
+        report.warn(format!("{} vertices belong to no face (their fields are empty)", info.unreferenced_vertices));
+    }
 }
 
 /// Laplacian sanity figures and feature edges (seed 2.2.2).

@@ -1,6 +1,11 @@
 //! A small software renderer: a mesh, optionally coloured by a per-vertex
 //! scalar field, shaded and written as a PNG picture (z-buffer, Gouraud
-//! shading, 2x2 supersampling, orthographic camera).
+//! shading, 2x2 supersampling, orthographic camera). A coloured picture
+//! carries a colour bar with the field's name, unit and value range, and
+//! says when the range was clipped to robust percentiles.
+
+mod font;
+mod legend;
 
 use std::path::Path;
 
@@ -23,11 +28,14 @@ pub struct RenderOptions {
     pub elevation: f64,
     /// The axis that points up in the picture.
     pub up: DVec3,
+    /// The caption of the colour bar (field name and unit), drawn when a
+    /// field colours the mesh; `None` draws the bar with an untitled caption.
+    pub title: Option<String>,
 }
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        Self { width: 800, height: 600, azimuth: -60.0, elevation: 30.0, up: DVec3::Z }
+        Self { width: 800, height: 600, azimuth: -60.0, elevation: 30.0, up: DVec3::Z, title: None }
     }
 }
 
@@ -41,6 +49,8 @@ pub struct ColorScale {
     pub max: f64,
     /// Diverging map centred on zero (for signed fields).
     pub diverging: bool,
+    /// Smallest and largest finite value of the field (`None` when it has none).
+    pub data_range: Option<(f64, f64)>,
 }
 
 impl ColorScale {
@@ -49,19 +59,26 @@ impl ColorScale {
     pub fn fit(values: &[f64]) -> Self {
         let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
         if v.is_empty() {
-            return Self { min: 0.0, max: 1.0, diverging: false };
+            return Self { min: 0.0, max: 1.0, diverging: false, data_range: None };
         }
         v.sort_by(f64::total_cmp);
         let pick = |q: f64| v[((v.len() - 1) as f64 * q).round() as usize];
         let (lo, hi) = (pick(0.02), pick(0.98));
+        let data_range = Some((v[0], v[v.len() - 1]));
         if lo < 0.0 && hi > 0.0 {
             let m = lo.abs().max(hi);
-            Self { min: -m, max: m, diverging: true }
+            Self { min: -m, max: m, diverging: true, data_range }
         } else if hi > lo {
-            Self { min: lo, max: hi, diverging: false }
+            Self { min: lo, max: hi, diverging: false, data_range }
         } else {
-            Self { min: lo - 0.5, max: lo + 0.5, diverging: false }
+            Self { min: lo - 0.5, max: lo + 0.5, diverging: false, data_range }
         }
+    }
+
+    /// `true` when some finite values lie outside the colours' range (they
+    /// take the end colours).
+    pub fn clipped(&self) -> bool {
+        self.data_range.is_some_and(|(lo, hi)| lo < self.min || hi > self.max)
     }
 
     /// RGB in [0, 1] of a value (grey for non-finite values).
@@ -98,7 +115,11 @@ pub fn render_png(mesh: &TriMesh, scalar: Option<&[f64]>, path: &Path, options: 
             return Err(format!("{} scalar values for {} vertices", s.len(), mesh.vertex_count()).into());
         }
     }
-    let rgb = rasterize(mesh, scalar, options);
+    let mut rgb = rasterize(mesh, scalar, options);
+    if let Some(values) = scalar {
+        let caption = options.title.as_deref().unwrap_or("field");
+        legend::draw(&mut rgb, options.width as usize, options.height as usize, &ColorScale::fit(values), caption);
+    }
     let file = std::fs::File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
     let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), options.width, options.height);
     encoder.set_color(png::ColorType::Rgb);
@@ -117,19 +138,35 @@ pub fn rasterize(mesh: &TriMesh, scalar: Option<&[f64]>, options: &RenderOptions
 
     let (az, el) = (options.azimuth.to_radians(), options.elevation.to_radians());
     // A frame (e1, e2, up) with the azimuth measured in the e1-e2 plane.
+    // Azimuth 0 looks at the model's front: +z for a y-up model, -y for a
+    // z-up one (the conventions of modelling tools), +z for an x-up one.
     let z = options.up.try_normalize().unwrap_or(DVec3::Z);
-    let e1 = z.any_orthonormal_vector();
+    let front = if z.z.abs() > 0.9 { -DVec3::Y } else { DVec3::Z };
+    let e1 = (front - front.dot(z) * z).try_normalize().unwrap_or_else(|| z.any_orthonormal_vector());
     let e2 = z.cross(e1);
     let toward_camera = el.cos() * (az.cos() * e1 + az.sin() * e2) + el.sin() * z;
     let right = z.cross(toward_camera).try_normalize().unwrap_or(e1);
     let up = toward_camera.cross(right);
-    let bbox = geometry::bounding_box(mesh);
-    let center = bbox.map_or(DVec3::ZERO, |b| b.center());
-    let radius = mesh.positions().iter().map(|p| p.distance(center)).fold(0.0, f64::max).max(1e-300);
-    let scale = 0.92 * (w.min(h) as f64) / (2.0 * radius);
+    // Fit the projected extent of the mesh into the picture, leaving room
+    // for the colour bar and the captions when a field is shown.
+    let (lo, hi) = mesh.positions().iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+        let q = DVec2::new(p.dot(right), p.dot(up));
+        (lo.min(q), hi.max(q))
+    });
+    let (lo, hi) = if lo.x <= hi.x { (lo, hi) } else { (DVec2::ZERO, DVec2::ZERO) };
+    let margin = if scalar.is_some() && options.width >= 240 && options.height >= 160 {
+        [0.0, 110.0, 26.0, 26.0].map(|m| m * SS as f64) // left, right, top, bottom
+    } else {
+        [0.0; 4]
+    };
+    let area = DVec2::new(w as f64 - margin[0] - margin[1], h as f64 - margin[2] - margin[3]);
+    let extent = (hi - lo).max(DVec2::splat(1e-300));
+    let scale = 0.92 * (area.x / extent.x).min(area.y / extent.y);
+    let mid = 0.5 * (lo + hi);
+    let centre = DVec2::new(margin[0] + area.x / 2.0, margin[2] + area.y / 2.0);
     let project = |p: DVec3| {
-        let d = p - center;
-        (DVec2::new(w as f64 / 2.0 + scale * d.dot(right), h as f64 / 2.0 - scale * d.dot(up)), d.dot(toward_camera))
+        let q = DVec2::new(p.dot(right), p.dot(up)) - mid;
+        (DVec2::new(centre.x + scale * q.x, centre.y - scale * q.y), p.dot(toward_camera))
     };
     let normals = geometry::vertex_normals(mesh, NormalWeighting::Area);
     let scale_colors = scalar.map(ColorScale::fit);
