@@ -392,8 +392,8 @@ fn height_field_tensor(n: DVec3, t1: DVec3, t2: DVec3, g: [f64; 2], hess: Sym2) 
 /// polynomial (rank test), carry it ill-conditioned ([`MAX_SPREAD`]) or the
 /// fitted normal turns more than 60 degrees from the start, retries on the
 /// neighbourhood grown by a ring (or 1.5x the radius), then with lower
-/// degrees; keeps the best-conditioned fit when none passes, and flags the
-/// vertex degenerate when nothing fits. O(sum of neighbourhood sizes), parallel over vertices.
+/// degrees; keeps the best-conditioned fit when none passes (flagged
+/// ill-conditioned), and flags the vertex degenerate when nothing fits. O(sum of neighbourhood sizes), parallel over vertices.
 pub(crate) fn estimate(mesh: &TriMesh, normals: Normals, options: &FitOptions) -> Result<Vec<LocalTensor>> {
     let nbh = options.neighborhood.validate()?;
     let nv = vertex_normals(mesh, normals);
@@ -437,6 +437,14 @@ pub(crate) fn estimate(mesh: &TriMesh, normals: Normals, options: &FitOptions) -
                 best = Some((t, spread));
             }
         }
-        best.map_or_else(|| LocalTensor::empty(n, VertexStatus::Degenerate), |(t, _)| t)
+        best.map_or_else(
+            || LocalTensor::empty(n, VertexStatus::Degenerate),
+            |(mut t, _)| {
+                if !matches!(t.status, VertexStatus::NonManifold) {
+                    t.status = VertexStatus::IllConditioned;
+                }
+                t
+            },
+        )
     }))
 }

@@ -8,6 +8,7 @@
 //! | [`gaussian_curvature`] | angle defect, integrated and pointwise, boundary geodesic curvature (Gauss-Bonnet exact) | eq. 2.25 |
 //! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_core::operators::cotan_laplacian`] | eq. 2.26 |
 //! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`Method`]: quartic (default), cubic or quadric [jet fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
+//! | [`pointwise_curvature`] | [`PointwiseCurvature`]: pointwise `K = k1 k2` and `H = (k1 + k2) / 2` from the tensor (accurate on irregular meshes), the discrete values (angle defect, cotangent formula) and their integrals, with a [`CurvatureFlag`] wherever a value is not an estimate (zero-area faces, ill-conditioned fits, curvature past the sampling's resolution) | eq. 2.19-2.20, 2.25-2.26 |
 //! | [`integral_curvature`] | Gaussian and mean curvature integrated over a k-ring or ball | 2.5 |
 //! | [`shape_index`], [`curvedness`] | Koenderink's shape descriptors from `k1`, `k2` | |
 //!
@@ -45,6 +46,7 @@ pub mod neighborhood;
 mod normal_cycle;
 pub mod normals;
 mod par;
+pub mod pointwise;
 mod rusinkiewicz;
 pub mod status;
 pub mod tensor;
@@ -54,9 +56,12 @@ pub use error::{CurvatureError, Result};
 pub use fit::{Degree, FitOptions};
 pub use gaussian::{gaussian_curvature, GaussianCurvature, GaussianOptions};
 pub use integral::{integral_curvature, IntegralCurvature};
-pub use mean::{mean_curvature, MeanCurvature, MeanOptions};
+pub use mean::{mean_curvature, mean_curvature_with_normals, MeanCurvature, MeanOptions};
 pub use neighborhood::Neighborhood;
 pub use normals::Normals;
+pub use pointwise::{
+    flag_code, pointwise_curvature, sampling_length, CurvatureFlag, FlagCounts, PointwiseCurvature, PointwiseOptions,
+};
 pub use status::{StatusCounts, VertexStatus};
 pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, Method, TensorOptions};
 

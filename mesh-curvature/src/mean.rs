@@ -6,7 +6,7 @@ use mesh_core::operators::cotan_laplacian;
 use mesh_core::TriMesh;
 
 use crate::area::{vertex_areas, AreaKind};
-use crate::error::Result;
+use crate::error::{CurvatureError, Result};
 use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
@@ -57,16 +57,47 @@ pub struct MeanCurvature {
 /// Cost O(V + F): Laplacian assembly, one sparse product with the three
 /// coordinate columns (in parallel over rows with the `rayon` feature).
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
+    let (normals, (lx, area)) =
+        par::join(|| vertex_normals(mesh, options.normals), || laplacian_and_area(mesh, options.area));
+    Ok(assemble(mesh, lx, area, &normals))
+}
+
+/// [`mean_curvature`] signed by the given vertex normals instead of a
+/// weighting of face normals: `normals[i]` (unit, or zero where there is
+/// none) orients vertex `i`. With the normals of a [`crate::CurvatureTensor`]
+/// the discrete and the tensor's mean curvature share one sign convention
+/// at every vertex, folds of a scan included. Cost O(V + F).
+///
+/// Errors with [`CurvatureError::InvalidOption`] when `normals` does not
+/// hold one vector per vertex.
+pub fn mean_curvature_with_normals(mesh: &TriMesh, area: AreaKind, normals: &[DVec3]) -> Result<MeanCurvature> {
+    if normals.len() != mesh.vertex_count() {
+        return Err(CurvatureError::InvalidOption {
+            name: "normals",
+            reason: format!("{} normals for {} vertices", normals.len(), mesh.vertex_count()),
+        });
+    }
+    let (lx, area) = laplacian_and_area(mesh, area);
+    Ok(assemble(mesh, lx, area, normals))
+}
+
+/// `(L x)_i` for every vertex, and the vertex areas. O(V + F).
+fn laplacian_and_area(mesh: &TriMesh, kind: AreaKind) -> (Vec<DVec3>, Vec<f64>) {
     let p = mesh.positions();
-    let (lx, (area, normals)) = par::join(
+    par::join(
         || {
             let l = cotan_laplacian(mesh);
             par::map(mesh.vertex_count(), |i| {
                 l.outer_view(i).map_or(DVec3::ZERO, |row| row.iter().map(|(j, w)| *w * p[j]).sum::<DVec3>())
             })
         },
-        || par::join(|| vertex_areas(mesh, options.area), || vertex_normals(mesh, options.normals)),
-    );
+        || vertex_areas(mesh, kind),
+    )
+}
+
+/// Integrated and pointwise mean curvature from `(L x)_i`, the areas and
+/// the orienting normals. O(V).
+fn assemble(mesh: &TriMesh, lx: Vec<DVec3>, area: Vec<f64>, normals: &[DVec3]) -> MeanCurvature {
     let mut status = topological_status(mesh);
     let n = mesh.vertex_count();
     let (mut integrated, mut pointwise, mut normal) = (vec![0.0; n], vec![0.0; n], vec![DVec3::ZERO; n]);
@@ -75,7 +106,7 @@ pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurva
             continue;
         }
         let (hn2, nv) = (lx[i], normals[i]);
-        if area[i].is_nan() || area[i] <= 0.0 || nv == DVec3::ZERO {
+        if area[i].is_nan() || area[i] <= 0.0 || nv == DVec3::ZERO || !nv.is_finite() {
             status[i] = VertexStatus::Degenerate;
             continue;
         }
@@ -88,5 +119,5 @@ pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurva
             status[i] = VertexStatus::Degenerate;
         }
     }
-    Ok(MeanCurvature { integrated, pointwise, normal, area, status })
+    MeanCurvature { integrated, pointwise, normal, area, status }
 }

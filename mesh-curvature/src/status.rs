@@ -23,6 +23,11 @@ pub enum VertexStatus {
     /// estimator (zero-area faces, collinear or coincident neighbours): values
     /// are 0 or the best finite fallback.
     Degenerate,
+    /// A fit whose least-squares problem amplifies the data's errors beyond
+    /// the conditioning limit on every neighbourhood and degree tried (the
+    /// points nearly lie on a curve of the polynomial space): the values are
+    /// those of the best-conditioned fit, finite but not trusted.
+    IllConditioned,
 }
 
 impl VertexStatus {
@@ -40,6 +45,7 @@ impl VertexStatus {
             Self::NonManifold => "non-manifold",
             Self::Isolated => "isolated",
             Self::Degenerate => "degenerate",
+            Self::IllConditioned => "ill-conditioned",
         }
     }
 }
@@ -73,6 +79,8 @@ pub struct StatusCounts {
     pub isolated: usize,
     /// Vertices with [`VertexStatus::Degenerate`].
     pub degenerate: usize,
+    /// Vertices with [`VertexStatus::IllConditioned`].
+    pub ill_conditioned: usize,
 }
 
 impl StatusCounts {
@@ -86,6 +94,7 @@ impl StatusCounts {
                 VertexStatus::NonManifold => c.non_manifold += 1,
                 VertexStatus::Isolated => c.isolated += 1,
                 VertexStatus::Degenerate => c.degenerate += 1,
+                VertexStatus::IllConditioned => c.ill_conditioned += 1,
             }
         }
         c

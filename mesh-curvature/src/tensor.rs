@@ -9,7 +9,7 @@ use crate::fit::{self, FitOptions};
 use crate::frame::{tangent_basis, Sym2};
 use crate::neighborhood::Neighborhood;
 use crate::normal_cycle;
-use crate::normals::Normals;
+use crate::normals::{vertex_normals, Normals};
 use crate::rusinkiewicz;
 use crate::status::VertexStatus;
 
@@ -50,7 +50,10 @@ pub struct TensorOptions {
 /// Per-vertex curvature tensor, as principal curvatures and directions.
 ///
 /// Conventions: curvatures are positive where the surface bends away from
-/// its normal (a sphere with outward normals has `k1 = k2 = 1 / r`);
+/// its normal (a sphere with outward normals has `k1 = k2 = 1 / r`), and the
+/// normal is on the side the faces' orientation gives: on the side of the
+/// area-weighted vertex normal, which a flipped sliver in a fold of the mesh
+/// cannot turn over (Max's weights, which the estimators start from, can);
 /// `k1 >= k2`; `d1`, `d2` are unit tangent vectors, orthogonal, with
 /// `d1 x d2 = normal`; `d1` is the direction of `k1`. Vertices without an
 /// estimate (isolated, degenerate) have zero curvatures; their directions
@@ -155,7 +158,7 @@ pub fn curvature_tensor(mesh: &TriMesh, options: &TensorOptions) -> Result<Curva
         Method::Rusinkiewicz => rusinkiewicz::estimate(mesh, options.normals),
         Method::NormalCycle(nbh) => normal_cycle::estimate(mesh, options.normals, nbh.validate()?),
     };
-    Ok(assemble(local))
+    Ok(assemble(local, &vertex_normals(mesh, Normals::Area)))
 }
 
 /// A tensor in a local frame, as the estimators produce it.
@@ -181,6 +184,13 @@ impl LocalTensor {
         Self { normal, t1, t2, form: Sym2::default(), status }
     }
 
+    /// The same tensor seen from the other side: normal reversed, tangents
+    /// swapped (so that `t1 x t2` is still the normal), curvatures negated.
+    pub fn flipped(self) -> Self {
+        let Sym2 { a, b, c } = self.form;
+        Self { normal: -self.normal, t1: self.t2, t2: self.t1, form: Sym2::new(-c, -b, -a), status: self.status }
+    }
+
     /// The tensor `form` in the tangent basis of `normal`.
     pub fn new(normal: DVec3, form: Sym2, status: VertexStatus) -> Self {
         let (t1, t2) = tangent_basis(normal);
@@ -188,8 +198,10 @@ impl LocalTensor {
     }
 }
 
-/// Principal curvatures and directions from local tensors. O(V).
-fn assemble(local: Vec<LocalTensor>) -> CurvatureTensor {
+/// Principal curvatures and directions from local tensors, each oriented
+/// so that its normal is on the side of `orient` (the area-weighted vertex
+/// normals). O(V).
+fn assemble(local: Vec<LocalTensor>, orient: &[DVec3]) -> CurvatureTensor {
     let n = local.len();
     let mut out = CurvatureTensor {
         k1: Vec::with_capacity(n),
@@ -199,7 +211,8 @@ fn assemble(local: Vec<LocalTensor>) -> CurvatureTensor {
         normal: Vec::with_capacity(n),
         status: Vec::with_capacity(n),
     };
-    for t in local {
+    for (t, side) in local.into_iter().zip(orient) {
+        let t = if t.normal.dot(*side) < 0.0 { t.flipped() } else { t };
         let (mut form, mut status) = (t.form, t.status);
         if !form.is_finite() {
             form = Sym2::default();
