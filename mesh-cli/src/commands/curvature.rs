@@ -1,14 +1,16 @@
-//! `mesh curvature`: Gaussian (eq. 2.25), mean (eq. 2.26) and principal
-//! curvatures and directions (eq. 2.27-2.31) of a mesh, written as binary
-//! PLY with per-vertex `double` properties, with summary statistics.
+//! `mesh curvature`: pointwise Gaussian and mean curvature from the
+//! curvature tensor (eq. 2.19-2.20, 2.27-2.31), the discrete values (eq.
+//! 2.25, 2.26) and their integrals, principal curvatures and directions,
+//! written as binary PLY with per-vertex `double` properties, with summary
+//! statistics and the count of flagged vertices.
 
 use std::f64::consts::TAU;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use mesh_curvature::{
-    curvature_tensor, gaussian_curvature, mean_curvature, AreaKind, Degree, FitOptions, GaussianOptions, MeanOptions,
-    Method, Neighborhood, StatusCounts, TensorOptions, VertexStatus,
+    flag_code, pointwise_curvature, AreaKind, CurvatureFlag, Degree, FitOptions, FlagCounts, Method, Neighborhood,
+    PointwiseOptions, StatusCounts, TensorOptions,
 };
 use mesh_io::MeshView;
 use serde::Serialize;
@@ -22,7 +24,12 @@ pub struct Args {
     #[command(flatten)]
     input: InputArgs,
     /// Output PLY file: positions as double and per-vertex double properties
-    /// gaussian mean k1 k2 d1x d1y d1z d2x d2y d2z shape_index curvedness valid.
+    /// gaussian mean (from the tensor) k1 k2 d1x d1y d1z d2x d2y d2z
+    /// shape_index curvedness gaussian_discrete mean_discrete
+    /// gaussian_integrated mean_integrated geodesic_integrated valid flag
+    /// flag_discrete (flag codes: 0 trusted, 1 isolated, 2 non-manifold,
+    /// 3 degenerate, 4 ill-conditioned, 5 zero-area-face, 6 boundary,
+    /// 7 unresolved; flagged values are 0).
     #[arg(long, value_name = "OUT.ply")]
     out: PathBuf,
     /// Curvature tensor estimator: fit (quartic jet over the 2-ring, the most
@@ -38,10 +45,16 @@ pub struct Args {
     /// fit, 1 for quadric and normal-cycle).
     #[arg(long, value_name = "K")]
     rings: Option<u32>,
-    /// Area dividing the integrated Gaussian and mean curvature: mixed
-    /// (mixed Voronoi) or barycentric.
+    /// Area dividing the integrated Gaussian and mean curvature of the
+    /// discrete values: mixed (mixed Voronoi) or barycentric.
     #[arg(long, default_value = "mixed")]
     area: String,
+    /// Resolution limit: a curvature k at a vertex whose nearest
+    /// (non-duplicate) neighbour is h away is flagged `unresolved` when
+    /// |k| h exceeds it (2: a circle through samples h apart has a radius of
+    /// at least h / 2); `inf` turns the test off.
+    #[arg(long, default_value_t = 2.0, value_name = "C")]
+    resolution: f64,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -50,10 +63,10 @@ pub struct Args {
     force: bool,
 }
 
-/// Minimum, maximum and mean of a field over the vertices with an estimate.
+/// Minimum, maximum and mean of a field over the vertices kept.
 #[derive(Debug, Clone, Serialize)]
 pub struct Stats {
-    /// Smallest value (`null` without valid vertices).
+    /// Smallest value (`null` without kept vertices).
     pub min: Option<f64>,
     /// Largest value.
     pub max: Option<f64>,
@@ -62,8 +75,8 @@ pub struct Stats {
 }
 
 impl Stats {
-    fn of(values: &[f64], keep: &[bool]) -> Self {
-        let kept: Vec<f64> = values.iter().zip(keep).filter(|(_, k)| **k).map(|(v, _)| *v).collect();
+    fn of(values: &[f64], keep: impl Fn(usize) -> bool) -> Self {
+        let kept: Vec<f64> = values.iter().enumerate().filter(|(i, _)| keep(*i)).map(|(_, v)| *v).collect();
         if kept.is_empty() {
             return Self { min: None, max: None, mean: None };
         }
@@ -87,6 +100,24 @@ pub struct Counts {
     pub isolated: usize,
     /// Vertices without an estimate (zero area, too few neighbours).
     pub degenerate: usize,
+    /// Vertices whose fit is ill-conditioned on every neighbourhood tried.
+    pub ill_conditioned: usize,
+}
+
+/// Flagged vertices: the total and the count per reason (named as in
+/// `mesh_curvature::CurvatureFlag`).
+#[derive(Debug, Clone, Serialize)]
+pub struct Flagged {
+    /// Flagged vertices.
+    pub total: usize,
+    /// Count per reason (reasons with no vertex left out).
+    pub by_reason: std::collections::BTreeMap<String, usize>,
+}
+
+impl Flagged {
+    fn of(counts: FlagCounts) -> Self {
+        Self { total: counts.total(), by_reason: counts.nonzero().map(|(f, c)| (f.name().to_owned(), c)).collect() }
+    }
 }
 
 /// Everything `mesh curvature --json` prints.
@@ -100,34 +131,41 @@ pub struct Summary {
     pub vertices: usize,
     /// The tensor estimator.
     pub method: String,
+    /// The resolution limit of the `unresolved` flag.
+    pub resolution: Option<f64>,
     /// Sum of angle defects plus boundary geodesic curvature (discrete
-    /// Gauss-Bonnet), and 2 pi chi, which it equals on manifold meshes.
+    /// Gauss-Bonnet over `gaussian_integrated` and `geodesic_integrated`),
+    /// and 2 pi chi, which it equals on manifold meshes.
     pub gauss_bonnet_total: f64,
     /// 2 pi times the Euler characteristic.
     pub two_pi_chi: f64,
-    /// Gaussian curvature (angle defect / area) over valid vertices.
+    /// Gaussian curvature k1 k2 from the tensor, over unflagged vertices.
     pub gaussian: Stats,
-    /// Mean curvature (cotangent formula) over valid vertices.
+    /// Mean curvature (k1 + k2) / 2 from the tensor, over unflagged vertices.
     pub mean: Stats,
-    /// Maximum principal curvature over valid vertices.
+    /// Maximum principal curvature over unflagged vertices.
     pub k1: Stats,
-    /// Minimum principal curvature over valid vertices.
+    /// Minimum principal curvature over unflagged vertices.
     pub k2: Stats,
+    /// Angle defect / area, over vertices whose discrete values are unflagged.
+    pub gaussian_discrete: Stats,
+    /// Cotangent-formula mean curvature / area, same vertices.
+    pub mean_discrete: Stats,
+    /// Vertices whose tensor values (gaussian, mean, k1, k2) are flagged.
+    pub flagged: Flagged,
+    /// Vertices whose discrete values are flagged.
+    pub flagged_discrete: Flagged,
     /// Status counts of the tensor estimate.
     pub status: Counts,
-    /// Wall time of each computation, in milliseconds.
+    /// Wall time of the computation, in milliseconds.
     pub timings_ms: Timings,
 }
 
 /// Wall times in milliseconds.
 #[derive(Debug, Clone, Serialize)]
 pub struct Timings {
-    /// Angle defect.
-    pub gaussian: f64,
-    /// Cotangent mean curvature.
-    pub mean: f64,
-    /// Curvature tensor.
-    pub tensor: f64,
+    /// Tensor, discrete values and flags together.
+    pub curvature: f64,
 }
 
 /// The tensor options from the command line.
@@ -161,28 +199,33 @@ fn tensor_options(args: &Args) -> CliResult<TensorOptions> {
     Ok(TensorOptions { method, ..TensorOptions::default() })
 }
 
-fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
-    let t = Instant::now();
-    let out = f();
-    (out, t.elapsed().as_secs_f64() * 1e3)
-}
-
 /// Runs `mesh curvature`.
 pub fn run(args: &Args) -> CliResult<()> {
-    let options = tensor_options(args)?;
+    let summary = write_fields(args)?;
+    if args.json {
+        return print_json(&summary);
+    }
+    print_text(&summary);
+    Ok(())
+}
+
+/// Computes the fields, writes the PLY file and returns the summary.
+fn write_fields(args: &Args) -> CliResult<Summary> {
+    let tensor = tensor_options(args)?;
     let area = match args.area.as_str() {
         "mixed" => AreaKind::MixedVoronoi,
         "barycentric" => AreaKind::Barycentric,
         other => return Err(format!("unknown --area `{other}`; known: mixed, barycentric").into()),
     };
+    let options = PointwiseOptions { tensor, area, resolution: args.resolution };
     check_not_input(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mesh = &data.mesh;
-    let (k, t_gaussian) = timed(|| gaussian_curvature(mesh, &GaussianOptions { area }));
-    let (h, t_mean) = timed(|| mean_curvature(mesh, &MeanOptions { area, ..MeanOptions::default() }));
-    let (t, t_tensor) = timed(|| curvature_tensor(mesh, &options));
-    let (k, h, t) = (k?, h?, t?);
+    let start = Instant::now();
+    let c = pointwise_curvature(mesh, &options)?;
+    let elapsed = start.elapsed().as_secs_f64() * 1e3;
 
+    let t = &c.tensor;
     let split = |v: &[mesh_core::glam::DVec3]| -> [Vec<f64>; 3] {
         [v.iter().map(|d| d.x).collect(), v.iter().map(|d| d.y).collect(), v.iter().map(|d| d.z).collect()]
     };
@@ -191,9 +234,12 @@ pub fn run(args: &Args) -> CliResult<()> {
     let shape_index = t.shape_index();
     let curvedness = t.curvedness();
     let valid: Vec<f64> = t.status.iter().map(|s| if s.is_valid() { 1.0 } else { 0.0 }).collect();
+    let codes =
+        |flags: &[Option<CurvatureFlag>]| -> Vec<f64> { flags.iter().map(|f| f64::from(flag_code(*f))).collect() };
+    let (flag, flag_discrete) = (codes(&c.flag), codes(&c.flag_discrete));
     let view = MeshView::new(mesh)
-        .with_scalar("gaussian", &k.pointwise)
-        .with_scalar("mean", &h.pointwise)
+        .with_scalar("gaussian", &c.gaussian)
+        .with_scalar("mean", &c.mean)
         .with_scalar("k1", &t.k1)
         .with_scalar("k2", &t.k2)
         .with_scalar("d1x", &d1x)
@@ -204,40 +250,47 @@ pub fn run(args: &Args) -> CliResult<()> {
         .with_scalar("d2z", &d2z)
         .with_scalar("shape_index", &shape_index)
         .with_scalar("curvedness", &curvedness)
-        .with_scalar("valid", &valid);
+        .with_scalar("gaussian_discrete", &c.gaussian_discrete)
+        .with_scalar("mean_discrete", &c.mean_discrete)
+        .with_scalar("gaussian_integrated", &c.gaussian_integrated)
+        .with_scalar("mean_integrated", &c.mean_integrated)
+        .with_scalar("geodesic_integrated", &c.geodesic_integrated)
+        .with_scalar("valid", &valid)
+        .with_scalar("flag", &flag)
+        .with_scalar("flag_discrete", &flag_discrete);
     ensure_parent(&args.out)?;
-    let write = binary_ply();
-    mesh_io::write(&args.out, view, &write)?;
+    mesh_io::write(&args.out, view, &binary_ply())?;
 
-    let keep_k: Vec<bool> = k.status.iter().map(|s| *s == VertexStatus::Valid).collect();
-    let keep_h: Vec<bool> = h.status.iter().map(|s| *s == VertexStatus::Valid).collect();
-    let keep_t: Vec<bool> = t.status.iter().map(|s| *s == VertexStatus::Valid).collect();
+    let trusted = |i: usize| c.flag[i].is_none();
+    let trusted_discrete = |i: usize| c.flag_discrete[i].is_none();
     let counts = StatusCounts::of(&t.status);
     let summary = Summary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
         vertices: mesh.vertex_count(),
-        method: format!("{:?}", options.method),
-        gauss_bonnet_total: k.total(),
+        method: format!("{:?}", options.tensor.method),
+        resolution: finite(options.resolution),
+        gauss_bonnet_total: c.gauss_bonnet_total(),
         two_pi_chi: TAU * mesh.connectivity().euler_characteristic() as f64,
-        gaussian: Stats::of(&k.pointwise, &keep_k),
-        mean: Stats::of(&h.pointwise, &keep_h),
-        k1: Stats::of(&t.k1, &keep_t),
-        k2: Stats::of(&t.k2, &keep_t),
+        gaussian: Stats::of(&c.gaussian, trusted),
+        mean: Stats::of(&c.mean, trusted),
+        k1: Stats::of(&t.k1, trusted),
+        k2: Stats::of(&t.k2, trusted),
+        gaussian_discrete: Stats::of(&c.gaussian_discrete, trusted_discrete),
+        mean_discrete: Stats::of(&c.mean_discrete, trusted_discrete),
+        flagged: Flagged::of(c.flag_counts()),
+        flagged_discrete: Flagged::of(c.discrete_flag_counts()),
         status: Counts {
             valid: counts.valid,
             boundary: counts.boundary,
             non_manifold: counts.non_manifold,
             isolated: counts.isolated,
             degenerate: counts.degenerate,
+            ill_conditioned: counts.ill_conditioned,
         },
-        timings_ms: Timings { gaussian: t_gaussian, mean: t_mean, tensor: t_tensor },
+        timings_ms: Timings { curvature: elapsed },
     };
-    if args.json {
-        return print_json(&summary);
-    }
-    print_text(&summary);
-    Ok(())
+    Ok(summary)
 }
 
 fn print_text(s: &Summary) {
@@ -245,17 +298,28 @@ fn print_text(s: &Summary) {
     println!("mesh: {} ({} vertices)", s.input, s.vertices);
     println!("  method             {}", s.method);
     println!("  gauss-bonnet       sum K + sum k_g = {:.12}, 2 pi chi = {:.12}", s.gauss_bonnet_total, s.two_pi_chi);
-    println!("  {:<18} {:>14} {:>14} {:>14}", "field (valid)", "min", "max", "mean");
-    for (name, st) in [("gaussian", &s.gaussian), ("mean", &s.mean), ("k1", &s.k1), ("k2", &s.k2)] {
+    println!("  {:<18} {:>14} {:>14} {:>14}", "field (unflagged)", "min", "max", "mean");
+    for (name, st) in [
+        ("gaussian", &s.gaussian),
+        ("mean", &s.mean),
+        ("k1", &s.k1),
+        ("k2", &s.k2),
+        ("gaussian_discrete", &s.gaussian_discrete),
+        ("mean_discrete", &s.mean_discrete),
+    ] {
         println!("  {name:<18} {:>14} {:>14} {:>14}", show(st.min), show(st.max), show(st.mean));
     }
-    let c = &s.status;
-    println!(
-        "  vertices           {} valid, {} boundary, {} non-manifold, {} isolated, {} degenerate",
-        c.valid, c.boundary, c.non_manifold, c.isolated, c.degenerate
-    );
-    let tm = &s.timings_ms;
-    println!("  time (ms)          gaussian {:.2}, mean {:.2}, tensor {:.2}", tm.gaussian, tm.mean, tm.tensor);
+    let reasons = |f: &Flagged| {
+        let list: Vec<String> = f.by_reason.iter().map(|(r, c)| format!("{c} {r}")).collect();
+        if list.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", list.join(", "))
+        }
+    };
+    println!("  flagged            {} vertices{}", s.flagged.total, reasons(&s.flagged));
+    println!("  flagged discrete   {} vertices{}", s.flagged_discrete.total, reasons(&s.flagged_discrete));
+    println!("  time (ms)          {:.2}", s.timings_ms.curvature);
     println!("  wrote              {}", s.output);
 }
 
@@ -267,20 +331,50 @@ mod tests {
         crate::commands::parse_args("curvature", extra)
     }
 
+    const FIELDS: [&str; 20] = [
+        "gaussian",
+        "mean",
+        "k1",
+        "k2",
+        "d1x",
+        "d1y",
+        "d1z",
+        "d2x",
+        "d2y",
+        "d2z",
+        "shape_index",
+        "curvedness",
+        "gaussian_discrete",
+        "mean_discrete",
+        "gaussian_integrated",
+        "mean_integrated",
+        "geodesic_integrated",
+        "valid",
+        "flag",
+        "flag_discrete",
+    ];
+
     #[test]
     fn writes_every_property_of_a_torus() {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("t.ply");
         let a = args(&["--shape", "torus", "--res", "16", "--out", out.to_str().unwrap(), "--json"]);
-        run(&a).unwrap();
+        let summary = write_fields(&a).unwrap();
         let data = mesh_io::read(&out).unwrap();
         assert_eq!(data.mesh.vertex_count(), 64 * 16);
-        for name in ["gaussian", "mean", "k1", "k2", "d1x", "d1y", "d1z", "d2x", "d2y", "d2z"] {
+        for name in FIELDS {
             let v = data.scalar(name).unwrap_or_else(|| panic!("missing {name}"));
             assert!(v.iter().all(|x| x.is_finite()), "{name}");
         }
-        // Torus R = 2, r = 0.5: k1 = 2 everywhere.
+        // Torus R = 2, r = 0.5: k1 = 2 everywhere, H = (k1 + k2) / 2 written as `mean`.
         assert!(data.scalar("k1").unwrap().iter().all(|k| (k - 2.0).abs() < 0.05));
+        let (k1, k2, mean) = (data.scalar("k1").unwrap(), data.scalar("k2").unwrap(), data.scalar("mean").unwrap());
+        assert!((0..k1.len()).all(|i| (mean[i] - 0.5 * (k1[i] + k2[i])).abs() < 1e-12));
+        // Nothing flagged on a smooth closed torus; Gauss-Bonnet on the integrated values.
+        assert_eq!((summary.flagged.total, summary.flagged_discrete.total), (0, 0));
+        assert!(data.scalar("flag").unwrap().iter().all(|f| *f == 0.0));
+        let total: f64 = data.scalar("gaussian_integrated").unwrap().iter().sum();
+        assert!(total.abs() < 1e-9 && (summary.gauss_bonnet_total - summary.two_pi_chi).abs() < 1e-9);
         // Positions survive as doubles.
         assert_eq!(data.mesh.positions(), mesh_core::shapes::by_name("torus", 16).unwrap().positions());
     }
@@ -296,6 +390,7 @@ mod tests {
             &["--method", "rusinkiewicz"],
             &["--method", "normal-cycle", "--radius", "0.2"],
             &["--method", "fit", "--area", "barycentric"],
+            &["--resolution", "inf"],
         ] {
             let mut v = vec!["--shape", "icosphere", "--res", "2", "--out", out];
             v.extend_from_slice(m);
@@ -307,6 +402,8 @@ mod tests {
             &["--method", "normal-cycle", "--radius=-1"],
             &["--method", "rusinkiewicz", "--rings", "2"],
             &["--area", "nope"],
+            &["--resolution", "0"],
+            &["--resolution", "NaN"],
         ] {
             let mut v = vec!["--shape", "icosphere", "--res", "1", "--out", out];
             v.extend_from_slice(bad);
@@ -315,16 +412,43 @@ mod tests {
     }
 
     #[test]
+    fn a_cube_flags_its_edges_and_counts_them() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("c.ply");
+        let summary = write_fields(&args(&["--shape", "cube", "--res", "8", "--out", out.to_str().unwrap()])).unwrap();
+        let data = mesh_io::read(&out).unwrap();
+        let flag = data.scalar("flag").unwrap();
+        let flagged = flag.iter().filter(|f| **f != 0.0).count();
+        assert!(flagged > 0 && flagged == summary.flagged.total, "{flagged} vs {:?}", summary.flagged);
+        assert_eq!(summary.flagged.by_reason.get("unresolved"), Some(&flagged));
+        let code = f64::from(CurvatureFlag::Unresolved.code());
+        let (gaussian, mean) = (data.scalar("gaussian").unwrap(), data.scalar("mean").unwrap());
+        for i in 0..flag.len() {
+            assert!(flag[i] == 0.0 || (flag[i] == code && gaussian[i] == 0.0 && mean[i] == 0.0));
+        }
+    }
+
+    #[test]
     fn shared_meshes_give_finite_fields() {
         let Some(dir) = crate::commands::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
-        for file in ["cgal_degtri_sliding.off", "cgal_holes.off", "npm_bunny.obj"] {
+        for file in ["cgal_degtri_sliding.off", "cgal_holes.off", "npm_bunny.obj", "npm_dragon_res3.ply"] {
             let out = tmp.path().join(format!("{file}.ply"));
             let input = dir.join(file);
-            run(&args(&[input.to_str().unwrap(), "--out", out.to_str().unwrap(), "--json"])).unwrap();
+            let summary = write_fields(&args(&[input.to_str().unwrap(), "--out", out.to_str().unwrap()])).unwrap();
             let data = mesh_io::read(&out).unwrap();
-            for name in ["gaussian", "mean", "k1", "k2", "d1x", "d2z"] {
+            for name in FIELDS {
                 assert!(data.scalar(name).unwrap().iter().all(|x| x.is_finite()), "{file} {name}");
+            }
+            let flagged = data.scalar("flag").unwrap().iter().filter(|f| **f != 0.0).count();
+            assert_eq!(flagged, summary.flagged.total, "{file}");
+            if file == "npm_dragon_res3.ply" {
+                // 2,094 non-manifold edges: their vertices are flagged, not measured.
+                assert!(
+                    summary.flagged.by_reason.get("non-manifold").is_some_and(|c| *c > 1000),
+                    "{:?}",
+                    summary.flagged
+                );
             }
         }
     }

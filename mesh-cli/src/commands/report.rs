@@ -239,27 +239,51 @@ fn stats(values: &[f64], keep: impl Fn(usize) -> bool) -> Value {
     json!({ "min": min, "max": max, "mean": kept.iter().sum::<f64>() / kept.len() as f64, "count": kept.len() })
 }
 
-/// Gaussian (eq. 2.25), mean (eq. 2.26) and principal curvatures (eq. 2.27-2.31).
+/// Pointwise Gaussian and mean curvature from the curvature tensor (eq.
+/// 2.19-2.20, 2.27-2.31), the discrete values (eq. 2.25, 2.26) and their
+/// integrals, with the vertices flagged where a value is not an estimate
+/// (their values are 0).
 fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
-    use mesh_curvature::{curvature_tensor, gaussian_curvature, mean_curvature};
-    let k = report.time("gaussian_curvature", || gaussian_curvature(mesh, &Default::default()))?;
-    let h = report.time("mean_curvature", || mean_curvature(mesh, &Default::default()))?;
-    let t = report.time("principal_curvature", || curvature_tensor(mesh, &Default::default()))?;
-    let valid = |s: &[mesh_curvature::VertexStatus], i: usize| s[i].is_valid();
+    use mesh_curvature::{flag_code, pointwise_curvature, FlagCounts, PointwiseOptions};
+    let options = PointwiseOptions::default();
+    let c = report.time("curvature", || pointwise_curvature(mesh, &options))?;
+    let flagged = |counts: FlagCounts| {
+        let by_reason: Map<String, Value> = counts.nonzero().map(|(f, n)| (f.name().to_owned(), json!(n))).collect();
+        json!({ "total": counts.total(), "by_reason": by_reason })
+    };
+    let (tensor_flags, discrete_flags) = (c.flag_counts(), c.discrete_flag_counts());
     let two_pi_chi = std::f64::consts::TAU * mesh.connectivity().euler_characteristic() as f64;
     let section = json!({
-        "gauss_bonnet_total": k.total(),
+        "gaussian_and_mean": "k1 k2 and (k1 + k2) / 2 from the curvature tensor (quartic fit over the 2-ring)",
+        "discrete": "angle defect and cotangent formula divided by the mixed Voronoi area (not pointwise estimates on irregular meshes)",
+        "statistics_over": "unflagged vertices",
+        "gauss_bonnet_total": c.gauss_bonnet_total(),
         "two_pi_chi": two_pi_chi,
-        "gaussian": stats(&k.pointwise, |i| valid(&k.status, i)),
-        "mean": stats(&h.pointwise, |i| valid(&h.status, i)),
-        "k1": stats(&t.k1, |i| valid(&t.status, i)),
-        "k2": stats(&t.k2, |i| valid(&t.status, i)),
-        "valid_vertices": t.status.iter().filter(|s| s.is_valid()).count(),
+        "gaussian": stats(&c.gaussian, |i| c.flag[i].is_none()),
+        "mean": stats(&c.mean, |i| c.flag[i].is_none()),
+        "k1": stats(&c.tensor.k1, |i| c.flag[i].is_none()),
+        "k2": stats(&c.tensor.k2, |i| c.flag[i].is_none()),
+        "gaussian_discrete": stats(&c.gaussian_discrete, |i| c.flag_discrete[i].is_none()),
+        "mean_discrete": stats(&c.mean_discrete, |i| c.flag_discrete[i].is_none()),
+        "resolution_limit": options.resolution,
+        "flagged": flagged(tensor_flags),
+        "flagged_discrete": flagged(discrete_flags),
+        "valid_vertices": c.tensor.status.iter().filter(|s| s.is_valid()).count(),
     });
-    report.field(mesh, "gaussian", k.pointwise)?;
-    report.field(mesh, "mean", h.pointwise)?;
-    report.field(mesh, "k1", t.k1)?;
-    report.field(mesh, "k2", t.k2)?;
+    let codes = |flags: &[Option<mesh_curvature::CurvatureFlag>]| -> Vec<f64> {
+        flags.iter().map(|f| f64::from(flag_code(*f))).collect()
+    };
+    // Fields without a picture: the discrete values and the flags.
+    report.fields.push(("gaussian_discrete", c.gaussian_discrete));
+    report.fields.push(("mean_discrete", c.mean_discrete));
+    report.fields.push(("gaussian_integrated", c.gaussian_integrated));
+    report.fields.push(("mean_integrated", c.mean_integrated));
+    report.fields.push(("curvature_flag", codes(&c.flag)));
+    report.fields.push(("curvature_flag_discrete", codes(&c.flag_discrete)));
+    report.field(mesh, "gaussian", c.gaussian)?;
+    report.field(mesh, "mean", c.mean)?;
+    report.field(mesh, "k1", c.tensor.k1)?;
+    report.field(mesh, "k2", c.tensor.k2)?;
     Ok(section)
 }
 
