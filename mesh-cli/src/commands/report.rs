@@ -273,9 +273,18 @@ fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     let codes = |flags: &[Option<mesh_curvature::CurvatureFlag>]| -> Vec<f64> {
         flags.iter().map(|f| f64::from(flag_code(*f))).collect()
     };
-    // Fields without a picture: the discrete values and the flags.
-    report.fields.push(("gaussian_discrete", c.gaussian_discrete));
-    report.fields.push(("mean_discrete", c.mean_discrete));
+    let reasons = |counts: FlagCounts| -> String {
+        counts.nonzero().map(|(f, n)| format!("{n} {f}")).collect::<Vec<_>>().join(", ")
+    };
+    if tensor_flags.total() > 0 {
+        report.warn(format!(
+            "curvature: {} vertices flagged ({}): their gaussian, mean, k1 and k2 are 0, not estimates \
+             (`curvature_flag` in mesh.ply)",
+            tensor_flags.total(),
+            reasons(tensor_flags)
+        ));
+    }
+    // Fields without a picture: the integrated values and the flags.
     report.fields.push(("gaussian_integrated", c.gaussian_integrated));
     report.fields.push(("mean_integrated", c.mean_integrated));
     report.fields.push(("curvature_flag", codes(&c.flag)));
@@ -284,6 +293,8 @@ fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     report.field(mesh, "mean", c.mean)?;
     report.field(mesh, "k1", c.tensor.k1)?;
     report.field(mesh, "k2", c.tensor.k2)?;
+    report.field(mesh, "gaussian_discrete", c.gaussian_discrete)?;
+    report.field(mesh, "mean_discrete", c.mean_discrete)?;
     Ok(section)
 }
 
