@@ -10,6 +10,8 @@
 //! by `MESH_SCALE_DATA` (holding `dragon_vrip.ply`). Generated meshes are
 //! built in memory and never written into the repository.
 
+mod curvature;
+
 use std::cell::OnceCell;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -105,7 +107,7 @@ fn dragon_path() -> Res<PathBuf> {
 type Part = (&'static str, fn(&mut Validator, &ScaleMeshes));
 
 /// Every part, in the order they run.
-const PARTS: &[Part] = &[];
+const PARTS: &[Part] = &[("curvature", curvature::run)];
 
 /// Runs every scale check.
 pub fn run(v: &mut Validator) {
