@@ -1,4 +1,4 @@
-//! Integral curvature over a neighbourhood (the seed's "integral curvature",
+//! Integral curvature over a neighbourhood (the chapter's "integral curvature",
 //! section 2.5): the integral of the Gaussian and mean curvature over the
 //! union of the mixed Voronoi cells of a vertex's neighbourhood.
 

@@ -1,9 +1,11 @@
-//! Discrete curvature of triangle meshes (seed section 2.5): Gaussian
-//! curvature by angle defect, mean curvature by the cotangent formula, the
-//! curvature tensor with principal curvatures and directions, integral
-//! curvature over neighbourhoods, shape index and curvedness.
+//! Discrete curvature of triangle meshes ("Digital Shape Processing" thesis
+//! chapter, section 2.5): Gaussian curvature by angle defect, mean
+//! curvature by the cotangent formula, the curvature tensor with principal
+//! curvatures and directions, pointwise curvature of scans with per-vertex
+//! flags, integral curvature over neighbourhoods, shape index and
+//! curvedness.
 //!
-//! | function | what it computes | seed |
+//! | function | what it computes | chapter |
 //! |---|---|---|
 //! | [`gaussian_curvature`] | angle defect, integrated and pointwise, boundary geodesic curvature (Gauss-Bonnet exact) | eq. 2.25 |
 //! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_core::operators::cotan_laplacian`] | eq. 2.26 |
