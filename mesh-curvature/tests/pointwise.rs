@@ -311,20 +311,7 @@ proptest! {
         faces in proptest::collection::vec((0usize..20, 0usize..20, 0usize..20), 1..40),
         snap in proptest::bool::ANY,
     ) {
-        let n = points.len();
-        let p: Vec<DVec3> = points
-            .iter()
-            .map(|&(x, y, z)| {
-                let q = DVec3::new(x, y, z);
-                if snap { (q * 2.0).round() / 2.0 } else { q }
-            })
-            .collect();
-        let f: Vec<[u32; 3]> = faces
-            .iter()
-            .map(|&(a, b, c)| [a % n, b % n, c % n].map(|x| x as u32))
-            .filter(|[a, b, c]| a != b && b != c && a != c)
-            .collect();
-        let m = TriMesh::new(p, f).unwrap();
+        let m = common::soup(&points, &faces, snap);
         assert_bounded(&m, &pointwise(&m));
     }
 }

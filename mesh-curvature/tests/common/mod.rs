@@ -127,6 +127,30 @@ pub fn errors(t: &CurvatureTensor, truth: &Truth) -> Errors {
     e
 }
 
+/// A triangle soup from proptest's draws: points, faces as index triples
+/// (taken modulo the point count, repeated corners dropped), optionally
+/// snapped to a coarse lattice, which makes coincident and collinear points.
+pub fn soup(points: &[(f64, f64, f64)], faces: &[(usize, usize, usize)], snap: bool) -> TriMesh {
+    let n = points.len();
+    let p: Vec<DVec3> = points
+        .iter()
+        .map(|&(x, y, z)| {
+            let q = DVec3::new(x, y, z);
+            if snap {
+                (q * 2.0).round() / 2.0
+            } else {
+                q
+            }
+        })
+        .collect();
+    let f: Vec<[u32; 3]> = faces
+        .iter()
+        .map(|&(a, b, c)| [a % n, b % n, c % n].map(|x| x as u32))
+        .filter(|[a, b, c]| a != b && b != c && a != c)
+        .collect();
+    TriMesh::new(p, f).unwrap()
+}
+
 /// Observed convergence order between two errors at mesh sizes h and h / ratio.
 pub fn order(coarse: f64, fine: f64, ratio: f64) -> f64 {
     (coarse / fine).ln() / ratio.ln()
