@@ -256,6 +256,8 @@ fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     let section = json!({
         "gaussian_and_mean": "k1 k2 and (k1 + k2) / 2 from the curvature tensor (quartic fit over the 2-ring)",
         "discrete": "angle defect and cotangent formula divided by the mixed Voronoi area (not pointwise estimates on irregular meshes)",
+        "ran_on": "the mesh as read: vertices on fins or duplicate faces are flagged non-manifold, not measured \
+                   (`mesh clean --manifold` first measures them)",
         "statistics_over": "unflagged vertices",
         "gauss_bonnet_total": c.gauss_bonnet_total(),
         "two_pi_chi": two_pi_chi,
