@@ -38,21 +38,44 @@ pub enum SpectralError {
         /// How many finite eigenvalues exist.
         available: usize,
     },
-    /// The iteration stopped before every wanted pair met the tolerance.
-    #[error("eigensolver did not converge: {converged} of {wanted} pairs after {restarts} restarts (worst relative residual {worst:e})")]
+    /// Some wanted pair missed the tolerance after every attempt (more
+    /// restarts, a larger block, another shift): no pair is returned.
+    #[error(
+        "eigensolver did not converge: {converged} of {wanted} pairs met the tolerance {tolerance:e} after {attempts} attempt(s) and {restarts} restarts; relative residuals of the wanted pairs: {}",
+        list(.residuals)
+    )]
     NotConverged {
         /// Pairs that met the tolerance.
         converged: usize,
         /// Pairs wanted.
         wanted: usize,
-        /// Restarts performed.
+        /// Attempts made (each with more restarts, a larger block or another shift).
+        attempts: usize,
+        /// Thick restarts, summed over the attempts.
         restarts: usize,
-        /// Largest relative residual estimate among the wanted pairs.
-        worst: f64,
+        /// The tolerance the residuals were held to.
+        tolerance: f64,
+        /// Relative residual (or, when the iteration itself stopped, its
+        /// residual estimate) of each wanted pair in the last attempt.
+        residuals: Vec<f64>,
     },
     /// A dense factorization or eigendecomposition failed.
     #[error("dense linear algebra failed: {0}")]
     Dense(String),
+}
+
+/// Residuals in scientific notation, the worst first when there are many.
+fn list(residuals: &[f64]) -> String {
+    const SHOWN: usize = 8;
+    let mut sorted: Vec<f64> = residuals.to_vec();
+    if sorted.len() > SHOWN {
+        sorted.sort_by(|a, b| b.total_cmp(a));
+        sorted.truncate(SHOWN);
+        let shown: Vec<String> = sorted.iter().map(|r| format!("{r:.1e}")).collect();
+        return format!("[{}, ...] (the {SHOWN} largest of {})", shown.join(", "), residuals.len());
+    }
+    let shown: Vec<String> = sorted.iter().map(|r| format!("{r:.1e}")).collect();
+    format!("[{}]", shown.join(", "))
 }
 
 /// Shorthand for results in this crate.

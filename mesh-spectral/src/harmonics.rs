@@ -16,18 +16,21 @@ use glam::DVec3;
 use mesh_core::TriMesh;
 use sprs::CsMat;
 
-use crate::eigen::{eigenpairs, tall, Eigenpairs, Options};
+use crate::eigen::{eigenpairs, tall, ComponentSelection, Eigenpairs, Options};
 use crate::error::{Result, SpectralError};
-use crate::operators::{laplace_beltrami, LaplacianKind, LumpedMass};
+use crate::operators::{laplace_beltrami, pencil, LaplacianKind, LumpedMass, OperatorInfo};
 
 /// Options of [`ManifoldHarmonics::new`].
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct HarmonicsOptions {
-    /// Laplacian discretization.
+    /// Laplacian discretization (`Auto`: intrinsic Delaunay when the mesh
+    /// has zero-area faces).
     pub laplacian: LaplacianKind,
     /// Lumped mass.
     pub mass: LumpedMass,
-    /// Eigensolver options.
+    /// Eigensolver options; with `component: Largest` the basis lives on
+    /// the mesh's largest connected component (most faces) and is zero on
+    /// the other vertices.
     pub eigen: Options,
 }
 
@@ -37,17 +40,35 @@ pub struct HarmonicsOptions {
 pub struct ManifoldHarmonics {
     pairs: Eigenpairs,
     mass: Vec<f64>,
+    info: Option<OperatorInfo>,
 }
 
 impl ManifoldHarmonics {
     /// The `k` smoothest harmonics of `mesh` (see [`crate::eigenpairs`] for
-    /// the cost). Errors: empty mesh, `k` above the number of vertices with
-    /// mass, solver failures.
+    /// the cost), on the whole mesh or, with
+    /// [`ComponentSelection::Largest`], on its largest connected component
+    /// (cut out with `TriMesh::largest_component`, so the operator is only
+    /// assembled there; the harmonics are zero elsewhere). Errors: empty
+    /// mesh, `k` above the number of vertices with mass, solver failures.
     pub fn new(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> Result<Self> {
-        let (l, mass) = laplace_beltrami(mesh, options.laplacian, options.mass)?;
-        let m = mesh_core::operators::mass::diagonal(mass.clone());
-        let pairs = eigenpairs(&l, &m, k, &options.eigen)?;
-        Ok(Self { pairs, mass })
+        let largest = options.eigen.component == ComponentSelection::Largest;
+        if largest && mesh.connectivity().components().count > 1 {
+            let piece = mesh.largest_component()?;
+            let inner = Self::solve(&piece.mesh, k, options)?;
+            let rows: Vec<usize> = piece.vertices.iter().map(|v| v.idx()).collect();
+            let n = mesh.vertex_count();
+            let mass = piece.scatter(&inner.mass, n, 0.0)?;
+            let pairs = inner.pairs.scatter(&rows, n)?;
+            return Ok(Self { pairs, mass, info: inner.info });
+        }
+        Self::solve(mesh, k, options)
+    }
+
+    fn solve(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> Result<Self> {
+        let p = pencil(mesh, options.laplacian, options.mass)?;
+        let m = mesh_core::operators::mass::diagonal(p.mass.clone());
+        let pairs = eigenpairs(&p.laplacian, &m, k, &options.eigen)?;
+        Ok(Self { pairs, mass: p.mass, info: Some(p.info) })
     }
 
     /// A basis from eigenpairs computed elsewhere (for instance with
@@ -64,7 +85,13 @@ impl ManifoldHarmonics {
         if let Some(bad) = mass.iter().find(|m| !(m.is_finite() && **m >= 0.0)) {
             return Err(SpectralError::InvalidMatrix { name: "M", reason: format!("mass {bad}") });
         }
-        Ok(Self { pairs, mass })
+        Ok(Self { pairs, mass, info: None })
+    }
+
+    /// Which Laplacian was built, why, and on how many vertices (`None` for
+    /// [`ManifoldHarmonics::from_eigenpairs`]).
+    pub fn operator_info(&self) -> Option<&OperatorInfo> {
+        self.info.as_ref()
     }
 
     /// The mass diagonal and the Laplacian of `mesh` for the given options,

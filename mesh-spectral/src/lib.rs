@@ -43,9 +43,11 @@ pub mod hks;
 pub mod operators;
 
 pub use compress::{compress, compression_curve, CompressionError};
-pub use eigen::{eigenpairs, Eigenpairs, Method, Options, Stats};
+pub use eigen::{eigenpairs, ComponentSelection, Eigenpairs, Method, Options, Stats, COMPONENT_NAMES};
 pub use error::{Result, SpectralError};
 pub use filter::{filter, filter_mesh, filter_with, Transfer};
 pub use harmonics::{HarmonicsOptions, ManifoldHarmonics};
 pub use hks::{heat_kernel_signature, hks_times};
-pub use operators::{laplace_beltrami, LaplacianKind, LumpedMass};
+pub use operators::{
+    laplace_beltrami, pencil, LaplacianKind, LumpedMass, OperatorInfo, Pencil, LAPLACIAN_NAMES, MASS_NAMES,
+};

@@ -8,6 +8,14 @@
 //! faer's dense self-adjoint eigensolver (tridiagonalization + divide and
 //! conquer) then gives every pair. Cost O(n^3); used for n up to a few
 //! hundred, where it beats any iterative method.
+//!
+//! When the constant is a null vector (`y_0 = M^1/2 1 / sqrt(area)`), it is
+//! deflated (Hotelling deflation, see Saad 2011, "Numerical Methods for
+//! Large Eigenvalue Problems", sec. 4.2): `A + c y_0 y_0^T` with `c` above
+//! the Gershgorin bound of `A` moves it to the top of the spectrum, so the
+//! smallest pairs are those of the complement. Without it, the zero of a
+//! small piece comes out as `+-eps lambda_max`, which for a fragment of a
+//! scan (area 1e-11) is of order -1e-2.
 
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -15,9 +23,10 @@ use faer::{Mat, Side};
 use super::problem::Component;
 use crate::error::{Result, SpectralError};
 
-/// The `want` smallest pairs of a component: ascending values and the
-/// eigenvectors (component size x want), M-orthonormal.
-pub(crate) fn smallest(c: &Component, want: usize) -> Result<(Vec<f64>, Mat<f64>)> {
+/// The `want` smallest pairs of a component (of the M-orthogonal complement
+/// of the constant when `deflate`): ascending values and the eigenvectors
+/// (component size x want), M-orthonormal.
+pub(crate) fn smallest(c: &Component, want: usize, deflate: bool) -> Result<(Vec<f64>, Mat<f64>)> {
     let nc = c.vertices.len();
     let massive: Vec<usize> = (0..nc).filter(|&i| c.mass[i] > 0.0).collect();
     let massless: Vec<usize> = (0..nc).filter(|&i| c.mass[i] <= 0.0).collect();
@@ -40,9 +49,15 @@ pub(crate) fn smallest(c: &Component, want: usize) -> Result<(Vec<f64>, Mat<f64>
     };
     let d: Vec<f64> = massive.iter().map(|&i| 1.0 / c.mass[i].sqrt()).collect();
     let p = massive.len();
-    let a = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]) * d[i] * d[j]);
+    let mut a = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]) * d[i] * d[j]);
+    if deflate {
+        let gershgorin = (0..p).map(|i| (0..p).map(|j| a[(i, j)].abs()).sum::<f64>()).fold(0.0, f64::max);
+        let c0 = 2.0 * gershgorin + 1.0;
+        let y0: Vec<f64> = d.iter().map(|&di| 1.0 / (di * c.area.sqrt())).collect();
+        a += Mat::from_fn(p, p, |i, j| c0 * y0[i] * y0[j]);
+    }
     let eig = a.self_adjoint_eigen(Side::Lower).map_err(|e| SpectralError::Dense(format!("{e:?}")))?;
-    let want = want.min(p);
+    let want = want.min(if deflate { p - 1 } else { p });
     let values: Vec<f64> = (0..want).map(|j| eig.S()[j]).collect();
     let xp = Mat::from_fn(p, want, |i, j| eig.U()[(i, j)] * d[i]);
     let mut x = Mat::zeros(nc, want);

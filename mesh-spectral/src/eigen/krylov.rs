@@ -162,15 +162,30 @@ pub(crate) fn solve<O: BlockOperator>(
             }
         }
         if restart == cfg.max_restarts {
-            let converged = (0..want).filter(|&j| estimate(j) <= est_tol).count();
-            return Err(SpectralError::NotConverged { converged, wanted: want, restarts: restart, worst });
+            let residuals: Vec<f64> = (0..want).map(estimate).collect();
+            let converged = residuals.iter().filter(|&&r| r <= est_tol).count();
+            return Err(SpectralError::NotConverged {
+                converged,
+                wanted: want,
+                attempts: 1,
+                restarts: restart,
+                tolerance: cfg.tol,
+                residuals,
+            });
         }
         let p = (cfg.nev + (ks.s - cfg.nev) / 2).min(ks.s - b);
         ks.restart(&ritz, p);
         times.other += clock.elapsed().as_secs_f64();
     }
     // The loop returns on its last iteration.
-    Err(SpectralError::NotConverged { converged: 0, wanted: want, restarts: cfg.max_restarts, worst: f64::NAN })
+    Err(SpectralError::NotConverged {
+        converged: 0,
+        wanted: want,
+        attempts: 1,
+        restarts: cfg.max_restarts,
+        tolerance: cfg.tol,
+        residuals: Vec::new(),
+    })
 }
 
 /// The state `B V = V H + Q G` with `V = v[:, ..s]`, `Q = v[:, s..s + b]`;

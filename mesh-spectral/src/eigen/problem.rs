@@ -46,6 +46,22 @@ impl Problem {
     pub fn available(&self) -> usize {
         self.components.iter().map(|c| c.massive).sum()
     }
+
+    /// Keeps only the component of largest total mass (the first among
+    /// equals); the vertices of the others join `excluded`.
+    pub fn keep_largest(&mut self) {
+        let Some(best) = (0..self.components.len())
+            .max_by(|&a, &b| self.components[a].area.total_cmp(&self.components[b].area).then(b.cmp(&a)))
+        else {
+            return;
+        };
+        let kept = self.components.swap_remove(best);
+        for c in self.components.drain(..) {
+            self.excluded.extend_from_slice(&c.vertices);
+        }
+        self.excluded.sort_unstable();
+        self.components.push(kept);
+    }
 }
 
 fn invalid(name: &'static str, reason: String) -> SpectralError {
@@ -212,6 +228,17 @@ mod tests {
         assert_eq!(p.components[0].vertices, vec![0, 2, 4]);
         assert_eq!(p.excluded, vec![1, 3, 5]);
         assert_eq!(p.available(), 3);
+    }
+
+    #[test]
+    fn largest_by_mass_and_shifted_rows() {
+        let l = path(5, &[(0, 1), (2, 3), (3, 4)]);
+        let m = mesh_core::operators::mass::diagonal(vec![5.0, 5.0, 1.0, 1.0, 1.0]);
+        let mut p = split(&l, &m).unwrap();
+        p.keep_largest();
+        assert_eq!(p.components.len(), 1);
+        assert_eq!(p.components[0].vertices, vec![0, 1]);
+        assert_eq!(p.excluded, vec![2, 3, 4]);
     }
 
     #[test]

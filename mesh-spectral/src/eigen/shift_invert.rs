@@ -68,6 +68,12 @@ impl ShiftInvert {
         self.chol.nnz()
     }
 
+    /// Component row of each coordinate of `y` (the vertices with mass, in
+    /// the factor's order).
+    pub fn rows(&self) -> &[usize] {
+        &self.rows
+    }
+
     /// Dimension of `B` (vertices with mass).
     pub fn dim(&self) -> usize {
         self.rows.len()

@@ -1,0 +1,326 @@
+//! The pairs of one connected component: dense for small pieces, block
+//! Krylov-Schur shift-invert otherwise, with the constant null vector
+//! deflated, every returned pair checked on its explicit residual, and
+//! retries (more restarts, a larger block, another shift) before
+//! [`SpectralError::NotConverged`].
+
+use std::f64::consts::PI;
+use std::time::Instant;
+
+use faer::{Mat, MatRef};
+
+use super::block_cholesky::LANES;
+use super::krylov::{self, BlockOperator, Config, Verdict};
+use super::problem::Component;
+use super::quality::{final_rayleigh_ritz, quality, rayleigh_quotients, Quality, Stiffness};
+use super::shift_invert::ShiftInvert;
+use super::{dense, Method, Options, Stats};
+use crate::error::{Result, SpectralError};
+
+/// The pairs of one component, before merging: values ascending, vectors
+/// over the component's vertices, their quality.
+pub(crate) struct Partial {
+    pub values: Vec<f64>,
+    pub vectors: Mat<f64>,
+    pub quality: Quality,
+    pub stats: Stats,
+}
+
+/// Vertex count up to which the dense path is still taken when the Krylov
+/// basis would not fit (k close to n).
+const DENSE_LIMIT: usize = 4000;
+
+/// Weyl's law for a piece of area `area`: `lambda_j ~ 4 pi j / area`; the
+/// scale `max(lambda_est(want) / 20, lambda_est(1) / 2)` of the `want`
+/// smallest pairs, which residuals are measured against and the default
+/// shift is placed at (negated).
+pub(crate) fn spectral_scale(area: f64, want: usize) -> f64 {
+    let weyl = 4.0 * PI / area;
+    (weyl * want as f64 / 20.0).max(weyl / 2.0)
+}
+
+/// The `want` smallest pairs of `c` (beyond the constant when `deflate`),
+/// measured against the scale of `scale_pairs` pairs.
+pub(crate) fn solve(
+    c: &Component,
+    want: usize,
+    deflate: bool,
+    scale_pairs: usize,
+    options: &Options,
+) -> Result<Partial> {
+    let scale = spectral_scale(c.area, scale_pairs);
+    let dim = c.massive - usize::from(deflate);
+    match KrylovSizes::new(want, dim, options) {
+        Some(sizes) if c.vertices.len() > options.dense_threshold => {
+            krylov_component(c, want, deflate, scale, sizes, options)
+        }
+        _ if c.massive <= DENSE_LIMIT.max(options.dense_threshold) => dense_component(c, want, deflate, scale, options),
+        _ => Err(SpectralError::InvalidOption {
+            name: "k",
+            reason: format!("{want} pairs of a {}-vertex piece: use k below {}", c.massive, c.massive / 3),
+        }),
+    }
+}
+
+fn dense_component(c: &Component, want: usize, deflate: bool, scale: f64, options: &Options) -> Result<Partial> {
+    let t = Instant::now();
+    let (values, vectors) = dense::smallest(c, want, deflate)?;
+    let mut stats = Stats::empty(Method::Dense);
+    stats.attempts = 1;
+    stats.iterate_seconds = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let st = Stiffness::new(&c.laplacian)?;
+    let quality = quality(&st, &c.mass, &values, vectors.as_ref(), scale, options.tolerance);
+    stats.finalize_seconds = t.elapsed().as_secs_f64();
+    Ok(Partial { values, vectors, quality, stats })
+}
+
+/// Guard, block and basis sizes of a Krylov run.
+#[derive(Debug, Clone, Copy)]
+struct KrylovSizes {
+    nev: usize,
+    block: usize,
+    basis: usize,
+}
+
+impl KrylovSizes {
+    /// `None` when the basis would not fit in the dimension `dim`.
+    fn new(want: usize, dim: usize, o: &Options) -> Option<Self> {
+        let nev = want + o.guard.unwrap_or((want / 10).max(4));
+        let block = o.block_size.unwrap_or((LANES * nev.div_ceil(64)).clamp(LANES, 4 * LANES));
+        Self::with_block(want, dim, o, block)
+    }
+
+    fn with_block(want: usize, dim: usize, o: &Options, block: usize) -> Option<Self> {
+        let nev = want + o.guard.unwrap_or((want / 10).max(4));
+        let basis = o.basis_size.unwrap_or(2 * nev + 2 * block).max(nev + 2 * block);
+        (basis + block <= dim).then_some(Self { nev, block, basis })
+    }
+
+    /// The sizes of the next attempt: one more lane group in the block (when
+    /// the block size is automatic), the basis grown to match.
+    fn grown(self, want: usize, dim: usize, o: &Options, at_least: usize) -> Self {
+        if o.block_size.is_some() {
+            return self;
+        }
+        let block = (self.block + LANES).max(at_least.next_multiple_of(LANES));
+        Self::with_block(want, dim, o, block).unwrap_or(self)
+    }
+}
+
+/// `P B P` with `P = I - y0 y0^T`: the shift-invert operator on the
+/// complement of its exact eigenvector `y0` (the constant, scaled), which is
+/// projected out of every block so that rounding cannot bring it back.
+struct Deflated<'a> {
+    op: &'a ShiftInvert,
+    y0: Option<Vec<f64>>,
+}
+
+impl Deflated<'_> {
+    fn project(&self, w: &mut Mat<f64>) {
+        let Some(y0) = &self.y0 else { return };
+        for j in 0..w.ncols() {
+            let col = w.col_as_slice_mut(j);
+            let d: f64 = col.iter().zip(y0).map(|(a, b)| a * b).sum();
+            col.iter_mut().zip(y0).for_each(|(a, b)| *a -= d * b);
+        }
+    }
+}
+
+impl BlockOperator for Deflated<'_> {
+    fn dim(&self) -> usize {
+        self.op.dim()
+    }
+    fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
+        if self.y0.is_some() {
+            let mut pq = q.to_owned();
+            self.project(&mut pq);
+            self.op.apply(pq.as_ref(), w)?;
+        } else {
+            self.op.apply(q, w)?;
+        }
+        self.project(w);
+        Ok(())
+    }
+}
+
+/// Factors `L - sigma M` for the first sigma that works: `preferred`
+/// (the user's shift, if any, is never changed), then ten times further
+/// from the spectrum, up to 8 times.
+fn factor(c: &Component, preferred: f64, fixed: bool) -> Result<ShiftInvert> {
+    if fixed {
+        return ShiftInvert::new(c, preferred);
+    }
+    let mut shift = preferred;
+    let mut last = None;
+    for _ in 0..8 {
+        match ShiftInvert::new(c, shift) {
+            Ok(op) => return Ok(op),
+            Err(e) => last = Some(e),
+        }
+        shift *= 10.0;
+    }
+    Err(last.unwrap_or_else(|| SpectralError::Dense("no shift could be factored".into())))
+}
+
+/// Most attempts per component. Attempt 2 grows the block and doubles the
+/// restarts; attempt 3 also moves the shift four times further from the
+/// spectrum (a better conditioned `K`, for pencils where the solves limit
+/// the accuracy). A converged cluster as large as the block (a block of b
+/// vectors sees at most b copies of an eigenvalue) also triggers a larger
+/// block.
+const MAX_ATTEMPTS: usize = 3;
+
+fn krylov_component(
+    c: &Component,
+    want: usize,
+    deflate: bool,
+    scale: f64,
+    sizes: KrylovSizes,
+    options: &Options,
+) -> Result<Partial> {
+    let dim = c.massive - usize::from(deflate);
+    let st = Stiffness::new(&c.laplacian)?;
+    let mut stats = Stats::empty(Method::BlockKrylovSchur);
+    let (mut sizes, mut restarts) = (sizes, options.max_restarts);
+    let mut shift = options.shift.unwrap_or(-scale);
+    let mut op: Option<ShiftInvert> = None;
+    // A passing result whose block may have hidden copies of a cluster, and
+    // the quality of the last failed attempt.
+    let mut passed: Option<Partial> = None;
+    let mut failed = Quality::default();
+    for attempt in 1..=MAX_ATTEMPTS {
+        if op.as_ref().is_none_or(|o| o.shift() != shift) {
+            let t = Instant::now();
+            let factored = factor(c, shift, options.shift.is_some())?;
+            stats.factor_seconds += t.elapsed().as_secs_f64();
+            shift = factored.shift();
+            op = Some(factored);
+        }
+        let Some(si) = op.as_ref() else { break };
+        stats.shift = Some(si.shift());
+        stats.factor_nonzeros = si.factor_nonzeros();
+        stats.attempts = attempt;
+        let y0 = deflate.then(|| null_vector(si, c));
+        let deflated = Deflated { op: si, y0 };
+        let run = Run { c, st: &st, op: &deflated, scale, want, sizes, restarts, options };
+        match run.go(&mut stats) {
+            Ok(partial) if partial.quality.misses() == 0 => {
+                let cluster = largest_cluster(&partial.values, scale);
+                let larger = sizes.grown(want, dim, options, cluster + 2);
+                if cluster < sizes.block || larger.block == sizes.block {
+                    return Ok(Partial { stats, ..partial });
+                }
+                sizes = larger;
+                passed = Some(partial);
+                continue;
+            }
+            Ok(partial) => failed = partial.quality,
+            Err(SpectralError::NotConverged { residuals, .. }) => {
+                let target = vec![options.tolerance; residuals.len()];
+                failed = Quality { relative: residuals, target, absolute: Vec::new() };
+            }
+            Err(e) => return Err(e),
+        }
+        sizes = sizes.grown(want, dim, options, 0);
+        restarts = restarts.saturating_mul(2);
+        if attempt + 1 == MAX_ATTEMPTS && options.shift.is_none() {
+            shift *= 4.0;
+        }
+    }
+    match passed {
+        Some(partial) => Ok(Partial { stats, ..partial }),
+        None => Err(not_converged(&failed, want, &stats, options.tolerance)),
+    }
+}
+
+fn not_converged(q: &Quality, want: usize, stats: &Stats, tolerance: f64) -> SpectralError {
+    SpectralError::NotConverged {
+        converged: q.relative.len() - q.misses(),
+        wanted: want,
+        attempts: stats.attempts,
+        restarts: stats.restarts,
+        tolerance: q.target.iter().copied().fold(tolerance, f64::max),
+        residuals: q.relative.clone(),
+    }
+}
+
+/// `M^1/2 1 / sqrt(area)` in the coordinates of `op`: the unit eigenvector
+/// of `B` for the eigenvalue 0 of the pencil.
+fn null_vector(op: &ShiftInvert, c: &Component) -> Vec<f64> {
+    let inv = 1.0 / c.area.sqrt();
+    op.rows().iter().map(|&row| c.mass[row].sqrt() * inv).collect()
+}
+
+/// One block Krylov-Schur run and its final Rayleigh-Ritz.
+struct Run<'a> {
+    c: &'a Component,
+    st: &'a Stiffness,
+    op: &'a Deflated<'a>,
+    scale: f64,
+    want: usize,
+    sizes: KrylovSizes,
+    restarts: usize,
+    options: &'a Options,
+}
+
+impl Run<'_> {
+    /// Adds its counts and timings to `stats`.
+    fn go(&self, stats: &mut Stats) -> Result<Partial> {
+        let t = Instant::now();
+        let (c, tol, scale) = (self.c, self.options.tolerance, self.scale);
+        let cfg = Config {
+            want: self.want,
+            nev: self.sizes.nev.min(self.sizes.basis - 2 * self.sizes.block),
+            block: self.sizes.block,
+            basis: self.sizes.basis,
+            tol,
+            max_restarts: self.restarts,
+            seed: self.options.seed,
+        };
+        let si = self.op.op;
+        let outcome = krylov::solve(self.op, &cfg, |theta, y, u| {
+            let x = si.vectors(y, u, theta)?;
+            let values = rayleigh_quotients(&self.st.l, &c.mass, x.as_ref());
+            let q = quality(self.st, &c.mass, &values, x.as_ref(), scale, tol);
+            Ok(Verdict { ratios: q.ratios(), vectors: x })
+        });
+        stats.iterate_seconds += t.elapsed().as_secs_f64();
+        stats.block_size = cfg.block;
+        stats.basis_size = cfg.basis;
+        let outcome = match outcome {
+            Ok(o) => o,
+            Err(e) => {
+                if let SpectralError::NotConverged { restarts, .. } = &e {
+                    stats.restarts += restarts;
+                }
+                return Err(e);
+            }
+        };
+        stats.restarts += outcome.restarts;
+        stats.operator_columns += outcome.columns;
+        stats.solve_seconds += outcome.timings.apply;
+        stats.orthogonalize_seconds += outcome.timings.orthogonalize;
+        let t = Instant::now();
+        let (values, vectors) = final_rayleigh_ritz(&self.st.l, &c.mass, outcome.vectors)?;
+        let quality = quality(self.st, &c.mass, &values, vectors.as_ref(), scale, tol);
+        stats.finalize_seconds += t.elapsed().as_secs_f64();
+        Ok(Partial { values, vectors, quality, stats: stats.clone() })
+    }
+}
+
+/// Size of the largest run of ascending values closer than
+/// `1e-8 (|lambda| + scale)` to their neighbour.
+fn largest_cluster(values: &[f64], scale: f64) -> usize {
+    let mut best = usize::from(!values.is_empty());
+    let mut run = 1;
+    for w in values.windows(2) {
+        if (w[1] - w[0]).abs() <= 1e-8 * (w[1].abs() + scale) {
+            run += 1;
+            best = best.max(run);
+        } else {
+            run = 1;
+        }
+    }
+    best
+}
