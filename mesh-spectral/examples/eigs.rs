@@ -9,7 +9,11 @@
 //! ```
 //!
 //! `EIGS_BLOCK`, `EIGS_BASIS`, `EIGS_GUARD`, `EIGS_SHIFT` override the
-//! corresponding [`Options`] fields (for tuning).
+//! corresponding [`Options`] fields (for tuning); `EIGS_LAPLACIAN`
+//! (auto, cotan, intrinsic) and `EIGS_COMPONENT` (all, largest) choose the
+//! pencil; `EIGS_DUMP=PREFIX` writes it as `PREFIX_L.mtx` (Matrix Market)
+//! and `PREFIX_M.txt` (the mass diagonal) so that scipy solves the
+//! identical problem.
 //!
 //! Shapes are those of `mesh_core::shapes::by_name` (`icosphere 6` is
 //! 40,962 vertices, `torus 158` 99,856, `grid 316` 100,489).
@@ -18,9 +22,9 @@ use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use mesh_core::operators::{self, MassKind};
+use mesh_core::operators::mass::diagonal;
 use mesh_core::{shapes, TriMesh};
-use mesh_spectral::{eigenpairs, Options};
+use mesh_spectral::{eigenpairs, pencil, ComponentSelection, LaplacianKind, LumpedMass, Options};
 
 fn main() -> ExitCode {
     match run() {
@@ -44,10 +48,21 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         mesh_io::write(out, &mesh, &mesh_io::WriteOptions::default())?;
         writeln!(std::io::stdout(), "wrote {out}")?;
     }
+    let text = |name: &str, default: &str| std::env::var(name).unwrap_or_else(|_| default.to_owned());
+    let laplacian: LaplacianKind = text("EIGS_LAPLACIAN", "auto").parse()?;
+    let component: ComponentSelection = text("EIGS_COMPONENT", "all").parse()?;
+    let mesh = match component {
+        ComponentSelection::Largest => mesh.largest_component()?.mesh,
+        ComponentSelection::All => mesh,
+    };
     let t = Instant::now();
-    let l = operators::cotan_laplacian(&mesh);
-    let m = operators::mass_matrix(&mesh, MassKind::MixedVoronoi);
+    let p = pencil(&mesh, laplacian, LumpedMass::MixedVoronoi)?;
+    let (l, m) = (p.laplacian, diagonal(p.mass.clone()));
     let assemble = t.elapsed().as_secs_f64();
+    writeln!(std::io::stdout(), "operator: {}", p.info.describe())?;
+    if let Ok(prefix) = std::env::var("EIGS_DUMP") {
+        dump(&prefix, &l, &p.mass)?;
+    }
     let env = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<f64>().ok());
     let options = Options {
         block_size: env("EIGS_BLOCK").map(|v| v as usize),
@@ -59,6 +74,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let pairs = eigenpairs(&l, &m, k, &options)?;
     let s = &pairs.stats;
     let worst = pairs.residuals.iter().copied().fold(0.0, f64::max);
+    let worst_abs = pairs.absolute_residuals.iter().copied().fold(0.0, f64::max);
     let mut stdout = std::io::stdout().lock();
     writeln!(
         stdout,
@@ -73,15 +89,34 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     writeln!(
         stdout,
-        "  block {} basis {} restarts {} solves {} factor nnz {} shift {:?}; worst residual {worst:.2e}; lambda_1..3 {:?}, lambda_k {:.6}",
+        "  block {} basis {} restarts {} solves {} factor nnz {} shift {:?}; worst relative residual {worst:.2e} (tolerance met {:.1e}), absolute {worst_abs:.2e}; lambda_1..3 {:?}, lambda_k {:.6}",
         s.block_size,
         s.basis_size,
         s.restarts,
         s.operator_columns,
         s.factor_nonzeros,
         s.shift,
+        s.tolerance,
         &pairs.values[1.min(k - 1)..4.min(k)],
         pairs.values[k - 1]
     )?;
+    let values: Vec<String> = pairs.values.iter().map(|v| format!("{v:.12e}")).collect();
+    writeln!(stdout, "  values {}", values.join(" "))?;
+    Ok(())
+}
+
+/// `L` as a Matrix Market coordinate file (1-based, general) and the mass
+/// diagonal one value per line.
+fn dump(prefix: &str, l: &sprs::CsMat<f64>, mass: &[f64]) -> Result<(), Box<dyn std::error::Error>> {
+    let mut out = std::io::BufWriter::new(std::fs::File::create(format!("{prefix}_L.mtx"))?);
+    writeln!(out, "%%MatrixMarket matrix coordinate real general")?;
+    writeln!(out, "{} {} {}", l.rows(), l.cols(), l.nnz())?;
+    for (v, (i, j)) in l.iter() {
+        writeln!(out, "{} {} {v:.17e}", i + 1, j + 1)?;
+    }
+    let mut out = std::io::BufWriter::new(std::fs::File::create(format!("{prefix}_M.txt"))?);
+    for m in mass {
+        writeln!(out, "{m:.17e}")?;
+    }
     Ok(())
 }

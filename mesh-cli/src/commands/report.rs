@@ -361,28 +361,45 @@ fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     }))
 }
 
-/// The 20 smallest eigenpairs of the cotangent Laplacian against the mixed
-/// Voronoi mass (seed 2.7), the compression curve of the geometry in the
-/// manifold harmonic basis (Vallet and Levy 2008), the first non-constant
-/// harmonic and the heat kernel signature at a middle time (Sun et al. 2009)
-/// as fields.
+/// The 20 smallest eigenpairs of the largest connected component (Laplacian
+/// chosen automatically: intrinsic Delaunay when the mesh has zero-area
+/// faces, cotangent otherwise; mixed Voronoi mass; seed 2.7), the
+/// compression curve of the geometry in the manifold harmonic basis (Vallet
+/// and Levy 2008), the first non-constant harmonic and the heat kernel
+/// signature at a middle time (Sun et al. 2009) as fields (zero outside the
+/// largest component).
 fn spectral_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
-    use mesh_spectral::{compression_curve, heat_kernel_signature, hks_times, ManifoldHarmonics};
+    use mesh_spectral::{
+        compression_curve, heat_kernel_signature, hks_times, ComponentSelection, HarmonicsOptions, ManifoldHarmonics,
+    };
     const PAIRS: usize = 20;
-    let conn = mesh.connectivity();
-    let referenced = mesh.vertex_ids().filter(|&v| conn.vertex_kind(v) != VertexKind::Isolated).count();
-    let k = PAIRS.min(referenced);
-    let mh = report.time("spectral_eigenpairs", || ManifoldHarmonics::new(mesh, k, &Default::default()))?;
+    let components = mesh.connectivity().components();
+    let largest = components.largest().ok_or("the mesh has no faces")?;
+    let piece_vertices = components.vertex_component.iter().filter(|&&c| c as usize == largest).count();
+    let k = PAIRS.min(piece_vertices);
+    let mut options = HarmonicsOptions::default();
+    options.eigen.component = ComponentSelection::Largest;
+    let mh = report.time("spectral_eigenpairs", || ManifoldHarmonics::new(mesh, k, &options))?;
     let pairs = mh.eigenpairs();
     let keeps: Vec<usize> = [1, 2, 5, 10, 20].into_iter().filter(|&j| j <= mh.len()).collect();
     let curve = report.time("spectral_compression", || compression_curve(mesh, &mh, &keeps))?;
     // Too few pairs for a time range: no signature, the rest still holds.
     let hks_time = hks_times(pairs, 3).ok().and_then(|t| t.get(1).copied());
     let hks = hks_time.and_then(|t| heat_kernel_signature(pairs, &[t]).ok()).and_then(|h| h.into_iter().next());
+    let info = mh.operator_info();
+    let st = &pairs.stats;
     let section = json!({
-        "operator": "cotangent Laplacian, mixed Voronoi lumped mass",
+        "operator": info.map(|i| i.describe()),
+        "laplacian": info.map(|i| i.laplacian.to_string()),
+        "degenerate_faces": info.map(|i| i.degenerate_faces),
+        "component": format!(
+            "the largest of {} ({} of {} vertices; the fields are 0 elsewhere)",
+            components.count, piece_vertices, mesh.vertex_count()
+        ),
         "eigenvalues": pairs.values.iter().map(|&x| finite(x)).collect::<Vec<_>>(),
+        "zero_eigenvalues": st.zero_eigenvalues,
         "max_residual": finite(pairs.residuals.iter().copied().fold(0.0, f64::max)),
+        "tolerance": st.tolerance,
         "compression": curve.iter().map(|c| json!({
             "keep": c.keep, "rms_error": finite(c.rms), "max_error": finite(c.max),
         })).collect::<Vec<_>>(),

@@ -3,7 +3,9 @@
 //!
 //! - `mesh spectral [input] --k K --out OUT.ply`: eigenvectors as per-vertex
 //!   double properties `phi0`, `phi1`, ...; `--json` prints the ascending
-//!   `eigenvalues`, the `residuals` ||L x - lambda M x|| / ||M x|| and timings;
+//!   `eigenvalues` (exact zeros first, one per component), the relative
+//!   `residuals` (each at most `tolerance`), the Laplacian taken and why,
+//!   and timings; `--component largest` keeps only the largest piece;
 //! - `mesh spectral filter [input] --keep K --out OUT.obj`: manifold-harmonic
 //!   filtering of the geometry (ideal low-pass by default, `--cutoff` for a
 //!   Butterworth low-pass, `--band LO,HI --gain G` to exaggerate a band);
@@ -18,8 +20,8 @@ use std::time::Instant;
 use mesh_core::TriMesh;
 use mesh_io::MeshView;
 use mesh_spectral::{
-    compress, compression_curve, eigenpairs, filter_mesh, heat_kernel_signature, hks_times, laplace_beltrami,
-    CompressionError, HarmonicsOptions, LaplacianKind, LumpedMass, ManifoldHarmonics, Options, Transfer,
+    compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, CompressionError,
+    HarmonicsOptions, LaplacianKind, LumpedMass, ManifoldHarmonics, Options, Transfer,
 };
 use serde::Serialize;
 
@@ -49,30 +51,24 @@ enum SpectralCommand {
 /// The operator pair and solver settings shared by every subcommand.
 #[derive(Debug, Clone, clap::Args)]
 struct OperatorArgs {
-    /// Laplacian: cotan (the mesh's, = -igl::cotmatrix) or intrinsic
-    /// (intrinsic Delaunay, robust on bad triangles).
-    #[arg(long, default_value = "cotan")]
+    /// Laplacian: auto (intrinsic when the mesh has zero-area faces, else
+    /// cotan), cotan (the mesh's, = -igl::cotmatrix) or intrinsic
+    /// (intrinsic Delaunay, mollified, robust on bad triangles).
+    #[arg(long, default_value = "auto")]
     laplacian: String,
     /// Lumped mass: voronoi (mixed Voronoi, igl VORONOI) or barycentric.
     #[arg(long, default_value = "voronoi")]
     mass: String,
-    /// Relative tolerance of the eigensolver.
+    /// Relative tolerance of every returned pair:
+    /// ||L x - lambda M x|| / ((|lambda| + s) ||M x||), s the spectral scale.
     #[arg(long, value_name = "TOL", default_value_t = Options::default().tolerance)]
     tolerance: f64,
 }
 
 impl OperatorArgs {
     fn options(&self) -> CliResult<HarmonicsOptions> {
-        let laplacian = match self.laplacian.as_str() {
-            "cotan" => LaplacianKind::Cotan,
-            "intrinsic" => LaplacianKind::IntrinsicDelaunay,
-            other => return Err(format!("unknown --laplacian `{other}`; known: cotan, intrinsic").into()),
-        };
-        let mass = match self.mass.as_str() {
-            "voronoi" => LumpedMass::MixedVoronoi,
-            "barycentric" => LumpedMass::Barycentric,
-            other => return Err(format!("unknown --mass `{other}`; known: voronoi, barycentric").into()),
-        };
+        let laplacian: LaplacianKind = self.laplacian.parse()?;
+        let mass: LumpedMass = self.mass.parse()?;
         let eigen = Options { tolerance: self.tolerance, ..Options::default() };
         Ok(HarmonicsOptions { laplacian, mass, eigen })
     }
@@ -87,6 +83,10 @@ struct EigenArgs {
     /// Number of eigenpairs (the smallest).
     #[arg(long, value_name = "K", default_value_t = 20)]
     k: usize,
+    /// Components: all (one zero eigenvalue per piece) or largest (the
+    /// spectrum of the largest piece only; eigenvectors 0 elsewhere).
+    #[arg(long, default_value = "all")]
+    component: String,
     /// Output PLY file: positions as double, per-vertex doubles phi0, phi1, ...
     #[arg(long, value_name = "OUT.ply")]
     out: Option<PathBuf>,
@@ -200,20 +200,44 @@ pub struct Summary {
     pub output: Option<String>,
     /// Number of vertices.
     pub vertices: usize,
+    /// all or largest.
+    pub component: String,
+    /// Vertices of the mesh the spectrum was computed on (the largest piece
+    /// with `--component largest`); eigenvectors are 0 on the others.
+    pub component_vertices: usize,
+    /// The Laplacian built: cotan or intrinsic.
+    pub laplacian: String,
+    /// The Laplacian, the reason for it, and the mass, in words.
+    pub operator: String,
+    /// Zero-area faces of the mesh (the reason `auto` takes intrinsic).
+    pub degenerate_faces: usize,
     /// Eigenvalues, ascending.
     pub eigenvalues: Vec<Option<f64>>,
-    /// ||L x - lambda M x|| / ||M x|| per pair.
+    /// Eigenvalues that are exact zeros (one constant per component).
+    pub zero_eigenvalues: usize,
+    /// Relative residuals ||L x - lambda M x|| / ((|lambda| + s) ||M x||).
     pub residuals: Vec<Option<f64>>,
-    /// Largest residual.
+    /// Largest relative residual (at most `tolerance`).
     pub max_residual: Option<f64>,
-    /// dense or block-krylov-schur (largest piece).
+    /// The tolerance met: the requested one, or the rounding level of the
+    /// residual where that is larger.
+    pub tolerance: f64,
+    /// The tolerance asked for.
+    pub requested_tolerance: f64,
+    /// ||L x - lambda M x|| / ||M x|| per pair (units of lambda).
+    pub absolute_residuals: Vec<Option<f64>>,
+    /// null-space, dense or block-krylov-schur (largest solved piece).
     pub method: String,
-    /// Shift sigma of K = L - sigma M (largest piece).
+    /// Shift sigma of K = L - sigma M (largest solved piece).
     pub shift: Option<f64>,
     /// Connected pieces with mass.
     pub components: usize,
-    /// Vertices without mass (zero in every eigenvector).
+    /// Pieces the spectrum was computed on.
+    pub components_used: usize,
+    /// Vertices where every eigenvector is 0 (no mass, or outside the piece).
     pub excluded_vertices: usize,
+    /// Attempts of the largest solved piece (1 when the first converged).
+    pub attempts: usize,
     /// Linear solves (columns) of the shift-invert iteration.
     pub operator_columns: usize,
     /// Wall times in milliseconds.
@@ -322,11 +346,11 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
     }
     let data = args.input.load()?;
     let mesh = &data.mesh;
-    let options = args.operator.options()?;
-    let start = Instant::now();
-    let (l, mass) = laplace_beltrami(mesh, options.laplacian, options.mass)?;
-    let assembly = ms(start);
-    let pairs = eigenpairs(&l, &mesh_core::operators::mass::diagonal(mass), args.k, &options.eigen)?;
+    let mut options = args.operator.options()?;
+    options.eigen.component = args.component.parse::<ComponentSelection>()?;
+    let mh = ManifoldHarmonics::new(mesh, args.k, &options)?;
+    let pairs = mh.eigenpairs();
+    let info = mh.operator_info().ok_or("no operator information")?;
     let start = Instant::now();
     if let Some(out) = &args.out {
         let fields: Vec<&[f64]> = (0..pairs.len()).map(|j| pairs.vector(j)).collect();
@@ -338,19 +362,31 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
         input: args.input.describe(),
         output: args.out.as_ref().map(|p| p.display().to_string()),
         vertices: mesh.vertex_count(),
+        component: options.eigen.component.to_string(),
+        component_vertices: info.vertices,
+        laplacian: info.laplacian.to_string(),
+        operator: info.describe(),
+        degenerate_faces: info.degenerate_faces,
         eigenvalues: pairs.values.iter().map(|&v| finite(v)).collect(),
+        zero_eigenvalues: st.zero_eigenvalues,
         residuals: pairs.residuals.iter().map(|&v| finite(v)).collect(),
         max_residual: finite(pairs.residuals.iter().copied().fold(0.0, f64::max)),
-        method: match st.method {
-            mesh_spectral::Method::Dense => "dense".into(),
-            mesh_spectral::Method::BlockKrylovSchur => "block-krylov-schur".into(),
-        },
+        tolerance: st.tolerance,
+        requested_tolerance: options.eigen.tolerance,
+        absolute_residuals: pairs.absolute_residuals.iter().map(|&v| finite(v)).collect(),
+        method: st.method.to_string(),
         shift: st.shift,
-        components: st.components,
+        // With --component largest the solver sees one piece: count the mesh's.
+        components: match options.eigen.component {
+            ComponentSelection::Largest => mesh.connectivity().components().count.max(st.components),
+            ComponentSelection::All => st.components,
+        },
+        components_used: st.components_used,
         excluded_vertices: pairs.excluded.len(),
+        attempts: st.attempts,
         operator_columns: st.operator_columns,
         timings_ms: Timings {
-            assembly,
+            assembly: info.assembly_seconds * 1e3,
             factorization: st.factor_seconds * 1e3,
             iteration: st.iterate_seconds * 1e3,
             finalize: st.finalize_seconds * 1e3,
@@ -361,15 +397,38 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
     if args.json {
         return print_json(&summary);
     }
-    println!("{} eigenpairs of {} ({} vertices), {}:", pairs.len(), summary.input, summary.vertices, summary.method);
-    for (j, (v, r)) in pairs.values.iter().zip(&pairs.residuals).enumerate() {
-        println!("{j:>5} {v:>22.15e}  residual {r:.1e}");
-    }
-    println!("eigensolver {:.1} ms (factorization {:.1} ms)", st.total_seconds * 1e3, st.factor_seconds * 1e3);
+    print_text(&summary, pairs);
     if let Some(out) = &summary.output {
         eprintln!("wrote {out}");
     }
     Ok(())
+}
+
+fn print_text(s: &Summary, pairs: &mesh_spectral::Eigenpairs) {
+    println!("{} eigenpairs of {} ({} vertices), {}:", pairs.len(), s.input, s.vertices, s.method);
+    println!("operator: {}", s.operator);
+    if s.component == "largest" {
+        println!("component: the largest, {} of {} vertices", s.component_vertices, s.vertices);
+    }
+    println!(
+        "{} zero eigenvalue(s) (one constant per component; {} component(s) used of {})",
+        s.zero_eigenvalues, s.components_used, s.components
+    );
+    for (j, (v, r)) in pairs.values.iter().zip(&pairs.residuals).enumerate() {
+        println!("{j:>5} {v:>22.15e}  relative residual {r:.1e}");
+    }
+    if s.tolerance > s.requested_tolerance {
+        println!(
+            "every residual <= {:.1e} (the rounding level of this operator; {:.1e} was asked)",
+            s.tolerance, s.requested_tolerance
+        );
+    } else {
+        println!("every residual <= tolerance {:.1e}", s.tolerance);
+    }
+    println!(
+        "eigensolver {:.1} ms (factorization {:.1} ms, {} attempt(s)); assembly {:.1} ms",
+        s.timings_ms.eigensolver, s.timings_ms.factorization, s.attempts, s.timings_ms.assembly
+    );
 }
 
 fn transfer(args: &FilterArgs) -> CliResult<Transfer> {
@@ -550,5 +609,14 @@ mod tests {
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "500"])).is_err());
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--laplacian", "nope"])).is_err());
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "0"])).is_err());
+        assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--component", "some"])).is_err());
+    }
+
+    #[test]
+    fn largest_component_and_names_parse() {
+        let a = parse(&["--shape", "icosphere", "--res", "2", "--k", "4", "--component", "largest", "--json"]);
+        assert_eq!(a.eigen.component, "largest");
+        run(&a).unwrap();
+        assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "4", "--laplacian", "intrinsic"])).is_ok());
     }
 }

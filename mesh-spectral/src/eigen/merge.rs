@@ -120,7 +120,8 @@ fn combined_stats(by_area: &[usize], partials: &[Option<Partial>]) -> Stats {
     let solved: Vec<&Stats> = partials.iter().flatten().map(|p| &p.stats).collect();
     let largest = by_area.iter().find_map(|&c| partials[c].as_ref().map(|p| p.stats.clone()));
     let mut stats = largest.unwrap_or_else(|| Stats::empty(Method::NullSpace));
-    let sum = |f: fn(&Stats) -> f64| solved.iter().map(|s| f(s)).sum::<f64>();
+    // A fold from +0: an empty `sum` of f64 is -0.
+    let sum = |f: fn(&Stats) -> f64| solved.iter().fold(0.0, |a, s| a + f(s));
     stats.restarts = solved.iter().map(|s| s.restarts).sum();
     stats.operator_columns = solved.iter().map(|s| s.operator_columns).sum();
     stats.factor_seconds = sum(|s| s.factor_seconds);

@@ -11,6 +11,7 @@
 //! built in memory and never written into the repository.
 
 mod curvature;
+mod spectral;
 
 use std::cell::OnceCell;
 use std::path::{Path, PathBuf};
@@ -107,7 +108,7 @@ fn dragon_path() -> Res<PathBuf> {
 type Part = (&'static str, fn(&mut Validator, &ScaleMeshes));
 
 /// Every part, in the order they run.
-const PARTS: &[Part] = &[("curvature", curvature::run)];
+const PARTS: &[Part] = &[("curvature", curvature::run), ("spectral", spectral::run)];
 
 /// Runs every scale check.
 pub fn run(v: &mut Validator) {
