@@ -1,11 +1,12 @@
-//! Spectral geometry processing on triangle meshes (seed section 2.7): the
+//! Spectral geometry processing on triangle meshes ("Digital Shape
+//! Processing" thesis chapter, sec. 2.7): the
 //! smallest eigenpairs of the Laplace-Beltrami operator, the manifold
 //! harmonic transform built on them, spectral filtering and compression of
 //! geometry, and the heat kernel signature.
 //!
 //! | module | what it holds | reference |
 //! |---|---|---|
-//! | [`eigen`] | [`eigenpairs`]: the k smallest pairs of `L x = lambda M x` by block Krylov-Schur shift-invert (dense for small pieces), M-orthonormal, with residuals | Stewart 2001; seed 2.7 |
+//! | [`eigen`] | [`eigenpairs`]: the k smallest pairs of `L x = lambda M x` by block Krylov-Schur shift-invert (dense for small pieces), one exact zero per component, M-orthonormal, every residual within the tolerance or [`SpectralError::NotConverged`] | Stewart 2001; chapter sec. 2.7 |
 //! | [`operators`] | the pair `(L, M)` of a mesh: cotangent or intrinsic Delaunay Laplacian, mixed Voronoi or barycentric lumped mass | eq. 2.15; Meyer et al. 2003 |
 //! | [`harmonics`] | [`ManifoldHarmonics`]: basis, forward `Phi^T M f` and inverse transforms of fields and geometry | Vallet and Levy 2008 |
 //! | [`filter`] | [`filter()`]: transfer functions over frequencies (low-pass, band exaggeration) | Vallet and Levy 2008 |

@@ -363,7 +363,7 @@ fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
 
 /// The 20 smallest eigenpairs of the largest connected component (Laplacian
 /// chosen automatically: intrinsic Delaunay when the mesh has zero-area
-/// faces, cotangent otherwise; mixed Voronoi mass; seed 2.7), the
+/// faces, cotangent otherwise; mixed Voronoi mass; the chapter's sec. 2.7), the
 /// compression curve of the geometry in the manifold harmonic basis (Vallet
 /// and Levy 2008), the first non-constant harmonic and the heat kernel
 /// signature at a middle time (Sun et al. 2009) as fields (zero outside the
@@ -405,6 +405,15 @@ fn spectral_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         })).collect::<Vec<_>>(),
         "hks_time": hks_time.and_then(finite),
     });
+    if components.count > 1 {
+        report.warn(format!(
+            "spectral: computed on the largest of {} components ({} of {} vertices); harmonic1 and hks are 0 on \
+             the others",
+            components.count,
+            piece_vertices,
+            mesh.vertex_count()
+        ));
+    }
     if mh.len() > 1 {
         report.field(mesh, "harmonic1", mh.harmonic(1).to_vec())?;
     }

@@ -1,5 +1,5 @@
 //! `mesh spectral`: the smallest eigenpairs of the Laplace-Beltrami operator
-//! (seed section 2.7) with mesh-spectral, and the tools built on them:
+//! ("Digital Shape Processing" thesis chapter, sec. 2.7) with mesh-spectral, and the tools built on them:
 //!
 //! - `mesh spectral [input] --k K --out OUT.ply`: eigenvectors as per-vertex
 //!   double properties `phi0`, `phi1`, ...; `--json` prints the ascending
