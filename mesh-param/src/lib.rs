@@ -13,6 +13,8 @@
 //! | [`topology`] | disk check with a typed error saying what the mesh is | eq. 2.6-2.7 |
 //! | [`cut`] | cut a closed or multiply-bounded mesh into a disk, with its seam | Erickson-Whittlesey 2005 |
 //! | [`param`] | [`parameterize`] and [`parameterize_cut`], the entry points | |
+//! | [`mod@atlas`] | [`atlas()`]: any manifold mesh, one chart per component, packed into the unit square | |
+//! | [`pack`] | smallest bounding box of a chart, skyline packing of boxes | Freeman-Shapira 1975, Jylanki 2010 |
 //!
 //! ```
 //! use mesh_param::{parameterize, BoundaryMap, Method, Options, Spacing};
@@ -42,6 +44,7 @@
 #![deny(missing_docs)]
 
 pub mod arap;
+pub mod atlas;
 pub mod bijectivity;
 pub mod boundary;
 pub mod cut;
@@ -50,17 +53,20 @@ pub mod distortion;
 pub mod error;
 pub mod fixed;
 pub mod lscm;
+pub mod pack;
 pub mod param;
 pub mod topology;
 pub mod weights;
 
 pub use arap::Arap;
+pub use atlas::{atlas, Atlas, AtlasOptions, AtlasSummary, Chart, ChartLayout};
 pub use boundary::{BoundaryMap, Spacing};
 pub use cut::{cut_to_disk, CutMesh};
 pub use distortion::{distortion, DistortionReport, DistortionSummary, FaceDistortion};
 pub use error::{ParamError, Result};
 pub use fixed::{DegeneratePolicy, FixedBoundarySolver};
 pub use lscm::{lscm, LscmOptions};
+pub use pack::{pack_rectangles, Packing, UvRect};
 pub use param::{parameterize, parameterize_cut, CutParameterization, Method, Options, Parameterization};
 pub use topology::{require_disk, Topology};
 pub use weights::{Authalic, Harmonic, Intrinsic, MeanValue, Uniform, Weights};

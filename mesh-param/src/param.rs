@@ -90,7 +90,7 @@ impl Method {
         })
     }
 
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         match *self {
             Self::Intrinsic { lambda, mu } => {
                 let ok = |x: f64| x.is_finite() && x >= 0.0;
@@ -165,6 +165,15 @@ pub struct Parameterization {
 /// # Ok::<(), mesh_param::ParamError>(())
 /// ```
 pub fn parameterize(mesh: &TriMesh, options: &Options) -> Result<Parameterization> {
+    let (uv, degenerate_faces) = map_disk(mesh, options)?;
+    let report = distortion(mesh, &uv)?;
+    Ok(Parameterization { uv, report, degenerate_faces })
+}
+
+/// The map of [`parameterize`] without its distortion report: UVs per
+/// vertex and the zero-area faces weighted uniformly. Same cost but the O(F)
+/// report.
+pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>, Vec<FaceId>)> {
     options.method.validate()?;
     let boundary = require_disk(mesh)?.vertices.clone();
     let (mut uv, degenerate_faces) = match options.method {
@@ -189,8 +198,7 @@ pub fn parameterize(mesh: &TriMesh, options: &Options) -> Result<Parameterizatio
     if options.normalize && matches!(options.method, Method::Lscm | Method::Arap { .. }) {
         normalize_to_unit_box(&mut uv);
     }
-    let report = distortion(mesh, &uv)?;
-    Ok(Parameterization { uv, report, degenerate_faces })
+    Ok((uv, degenerate_faces))
 }
 
 /// The fixed-boundary solve: constraints from the boundary map, one solver.

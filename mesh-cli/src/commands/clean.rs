@@ -33,8 +33,9 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct Summary {
+/// What `mesh_core::clean` changed, and the size of its result.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Summary {
     welded_vertices: usize,
     collapsed_faces: usize,
     degenerate_faces: usize,
@@ -52,7 +53,7 @@ struct Summary {
 }
 
 impl Summary {
-    fn new(r: &CleanReport, mesh: &mesh_core::TriMesh) -> Self {
+    pub(crate) fn new(r: &CleanReport, mesh: &mesh_core::TriMesh) -> Self {
         Self {
             welded_vertices: r.welded_vertices,
             collapsed_faces: r.collapsed_faces,

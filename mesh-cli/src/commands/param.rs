@@ -1,14 +1,19 @@
-//! `mesh param`: flattens a mesh onto the plane (seed section 2.4) with
-//! Tutte, mean-value, harmonic, authalic, intrinsic, LSCM or ARAP weights,
-//! writes an OBJ with texture coordinates (one `vt` per vertex for a disk,
-//! per corner when the mesh had to be cut into a disk first) and prints the
-//! distortion summary (eq. 2.8-2.11).
+//! `mesh param`: flattens any mesh onto the unit square (seed section 2.4)
+//! as a texture atlas: the mesh is cleaned into an oriented manifold when it
+//! is not one, each connected component is cut into a disk and flattened
+//! with Tutte, mean-value, harmonic, authalic, intrinsic, LSCM or ARAP
+//! weights, the charts are scaled to their surface area and packed without
+//! overlap. Writes an OBJ with texture coordinates (one `vt` per vertex when
+//! no seam was cut, per corner otherwise) and prints the charts and their
+//! distortion (eq. 2.8-2.11).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
+use mesh_core::clean::CleanOptions;
+use mesh_core::TriMesh;
 use mesh_io::MeshView;
-use mesh_param::{parameterize_cut, BoundaryMap, DistortionSummary, Method, Options, Spacing};
+use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSummary, Method, Spacing};
 use serde::Serialize;
 
 use crate::input::InputArgs;
@@ -19,7 +24,7 @@ use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResul
 pub struct Args {
     #[command(flatten)]
     input: InputArgs,
-    /// Output OBJ file with one `vt` per vertex (per corner along a seam).
+    /// Output OBJ file with one `vt` per vertex (per corner along seams).
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
     /// tutte, mean-value, harmonic, authalic, intrinsic, lscm or arap.
@@ -31,7 +36,7 @@ pub struct Args {
     /// Weight of the authalic energy (intrinsic only).
     #[arg(long, value_name = "M", default_value_t = 0.5)]
     mu: f64,
-    /// Boundary of the fixed-boundary methods: circle or square.
+    /// Boundary of each chart for the fixed-boundary methods: circle or square.
     #[arg(long, default_value = "circle")]
     boundary: String,
     /// Spacing of the boundary vertices on the circle: chord (3D edge
@@ -41,6 +46,13 @@ pub struct Args {
     /// Local/global iterations (arap only).
     #[arg(long, value_name = "N", default_value_t = 20)]
     iterations: usize,
+    /// Gap between charts in the unit square.
+    #[arg(long, value_name = "M", default_value_t = 1.0 / 256.0)]
+    margin: f64,
+    /// Repair the mesh first: auto (only when it is not an oriented
+    /// manifold), always, or never (refuse such a mesh).
+    #[arg(long, default_value = "auto")]
+    clean: String,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -49,24 +61,44 @@ pub struct Args {
     force: bool,
 }
 
-/// Everything `mesh param --json` prints.
+/// When to clean the input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CleanMode {
+    /// Only when the mesh is not an oriented manifold.
+    Auto,
+    /// Always.
+    Always,
+    /// Never: such a mesh is refused.
+    Never,
+}
+
+impl std::str::FromStr for CleanMode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(Self::Auto),
+            "always" => Ok(Self::Always),
+            "never" => Ok(Self::Never),
+            other => Err(format!("unknown --clean `{other}`; known: auto, always, never")),
+        }
+    }
+}
+
+/// What was done to make the input an oriented manifold.
 #[derive(Debug, Clone, Serialize)]
-pub struct Summary {
-    /// The input (file or shape).
-    pub input: String,
-    /// The written OBJ file.
-    pub output: String,
-    /// Number of vertices and faces of the input.
-    pub vertices: usize,
-    /// Number of faces.
-    pub faces: usize,
-    /// The method.
-    pub method: String,
-    /// Edges cut open to make the mesh a disk (0 for a disk).
-    pub seam_edges: usize,
-    /// Whether UVs are written per corner (the mesh was cut).
-    pub per_corner: bool,
-    /// Surface-area-weighted mean and the maximum of sigma1 / sigma2.
+pub struct Cleaning {
+    /// Whether `mesh_core::clean` ran.
+    pub applied: bool,
+    /// Why it ran, or why not.
+    pub reason: String,
+    /// What it changed, when it ran.
+    pub changes: Option<super::clean::Summary>,
+}
+
+/// Distortion totals (eq. 2.8-2.11) as printed, non-finite values as null.
+#[derive(Debug, Clone, Serialize)]
+pub struct Distortion {
+    /// Surface-area-weighted mean of sigma1 / sigma2.
     pub angle_distortion_mean: Option<f64>,
     /// Largest sigma1 / sigma2.
     pub angle_distortion_max: Option<f64>,
@@ -74,24 +106,135 @@ pub struct Summary {
     pub area_distortion_mean: Option<f64>,
     /// Largest max(r, 1/r).
     pub area_distortion_max: Option<f64>,
-    /// Faces whose parameter triangle is clockwise.
+    /// Faces whose parameter triangle is clockwise (and not collapsed).
     pub flipped_faces: usize,
-    /// Faces whose parameter triangle has zero area.
+    /// Faces whose parameter triangle has zero area (twice its area at most
+    /// 1e-12 times its longest side squared).
     pub collapsed_faces: usize,
-    /// Faces of zero surface area (weighted uniformly).
+    /// Faces of zero surface area (weighted uniformly, left out of the means).
     pub degenerate_faces: usize,
     /// Dirichlet energy / surface area (1 iff conformal, eq. 2.11).
     pub dirichlet_area_ratio: Option<f64>,
-    /// The parameter boundary does not intersect itself.
+    /// The parameter boundaries do not intersect themselves or each other.
     pub boundary_simple: bool,
-    /// No flipped or collapsed face and a simple boundary.
+    /// No flipped or collapsed face and simple boundaries.
     pub bijective: bool,
-    /// Wall time of cutting plus parameterization plus distortion, ms.
+}
+
+impl From<&DistortionSummary> for Distortion {
+    fn from(s: &DistortionSummary) -> Self {
+        Self {
+            angle_distortion_mean: finite(s.angle_distortion_mean),
+            angle_distortion_max: finite(s.angle_distortion_max),
+            area_distortion_mean: finite(s.area_distortion_mean),
+            area_distortion_max: finite(s.area_distortion_max),
+            flipped_faces: s.flipped_faces,
+            collapsed_faces: s.collapsed_faces,
+            degenerate_faces: s.degenerate_faces,
+            dirichlet_area_ratio: finite(s.dirichlet_area_ratio),
+            boundary_simple: s.boundary_simple,
+            bijective: s.bijective,
+        }
+    }
+}
+
+/// One chart as printed.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChartSummary {
+    /// Connected component of the (cleaned) mesh.
+    pub component: usize,
+    /// Faces of the chart.
+    pub faces: usize,
+    /// Vertices of the chart (seam vertices once per side).
+    pub vertices: usize,
+    /// Genus of the component.
+    pub genus: u64,
+    /// Boundary loops of the component.
+    pub boundary_loops: usize,
+    /// Edges cut open to make it a disk.
+    pub seam_edges: usize,
+    /// The method used, or `faces-apart`.
+    pub layout: String,
+    /// Why the chosen method was not used, when it was not.
+    pub fallback: Option<String>,
+    /// The component has no surface area.
+    pub zero_area: bool,
+    /// Surface area of the component.
+    pub surface_area: f64,
+    /// The chart's box in the unit square: [min u, min v, max u, max v].
+    pub rect: [f64; 4],
+    /// Distortion of the chart.
+    #[serde(flatten)]
+    pub distortion: Distortion,
+}
+
+impl From<&Chart> for ChartSummary {
+    fn from(c: &Chart) -> Self {
+        Self {
+            component: c.component,
+            faces: c.faces.len(),
+            vertices: c.vertices.len(),
+            genus: c.topology.genus,
+            boundary_loops: c.topology.boundary_loops,
+            seam_edges: c.seam.len(),
+            layout: c.layout.to_string(),
+            fallback: c.fallback.clone(),
+            zero_area: c.zero_area,
+            surface_area: c.surface_area,
+            rect: [c.rect.min.x, c.rect.min.y, c.rect.max.x, c.rect.max.y],
+            distortion: Distortion::from(&c.distortion),
+        }
+    }
+}
+
+/// Everything `mesh param --json` prints (and `mesh report`'s
+/// parameterization section).
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// The input (file or shape).
+    pub input: String,
+    /// The written OBJ file.
+    pub output: String,
+    /// Number of vertices of the input.
+    pub vertices: usize,
+    /// Number of faces of the input.
+    pub faces: usize,
+    /// What cleaning did (the OBJ holds the cleaned mesh).
+    pub cleaning: Cleaning,
+    /// The method.
+    pub method: String,
+    /// Number of charts (one per connected component).
+    pub charts: usize,
+    /// Charts not flattened with the chosen method.
+    pub fallback_charts: usize,
+    /// Charts laid out face by face (the last resort).
+    pub faces_apart_charts: usize,
+    /// Charts without surface area, sized by their extent.
+    pub zero_area_charts: usize,
+    /// Edges cut open, over all charts.
+    pub seam_edges: usize,
+    /// Whether UVs are written per corner (some vertex has several).
+    pub per_corner: bool,
+    /// UV units per unit of surface length, the same for every chart.
+    pub scale: f64,
+    /// Gap between charts in the unit square.
+    pub margin: f64,
+    /// Parameter area over the unit square's area.
+    pub coverage: f64,
+    /// Distortion over all faces (area distortion relative to the
+    /// atlas-wide area ratio).
+    #[serde(flatten)]
+    pub distortion: Distortion,
+    /// Collapsed faces whose surface triangle has zero area too.
+    pub collapsed_zero_area_faces: usize,
+    /// Wall time of cleaning, cutting, flattening, packing and distortion, ms.
     pub time_ms: f64,
+    /// Every chart, largest surface area first.
+    pub chart_list: Vec<ChartSummary>,
 }
 
 /// The options from the command line.
-fn options(args: &Args) -> CliResult<Options> {
+fn options(args: &Args) -> CliResult<AtlasOptions> {
     let method = match args.method.as_str() {
         "intrinsic" => Method::Intrinsic { lambda: args.lambda, mu: args.mu },
         "arap" => Method::Arap { iterations: args.iterations },
@@ -108,50 +251,93 @@ fn options(args: &Args) -> CliResult<Options> {
         "square" => BoundaryMap::Square,
         other => return Err(format!("unknown --boundary `{other}`; known: circle, square").into()),
     };
-    Ok(Options { method, boundary, ..Options::default() })
+    Ok(AtlasOptions { method, boundary, margin: args.margin })
 }
 
-/// Runs `mesh param`.
-pub fn run(args: &Args) -> CliResult<()> {
+/// Cleans `mesh` as `mode` says so that it becomes an oriented manifold
+/// (`mesh_core::clean` with `manifold`: fins detached, unorientable gluing
+/// cut, one vertex per fan, then duplicate, zero-area and unreferenced
+/// elements dropped), and says what was done.
+pub(crate) fn prepare(mesh: TriMesh, mode: CleanMode) -> CliResult<(TriMesh, Cleaning)> {
+    let defect = mesh.manifold_connectivity().err().map(|e| e.to_string());
+    let reason = match (mode, defect) {
+        (CleanMode::Never, Some(d)) => return Err(format!("{d} (--clean never)").into()),
+        (CleanMode::Never, None) => "--clean never".to_owned(),
+        (CleanMode::Auto, None) => "an oriented manifold already".to_owned(),
+        (CleanMode::Auto, Some(d)) => d,
+        (CleanMode::Always, d) => d.unwrap_or_else(|| "--clean always".to_owned()),
+    };
+    if mode == CleanMode::Never || reason == "an oriented manifold already" {
+        return Ok((mesh, Cleaning { applied: false, reason, changes: None }));
+    }
+    let (cleaned, report) = mesh.cleaned(&CleanOptions { manifold: true, ..CleanOptions::default() })?;
+    let changes = super::clean::Summary::new(&report, &cleaned);
+    if let Err(e) = cleaned.manifold_connectivity() {
+        return Err(format!("still not an oriented manifold after cleaning: {e}").into());
+    }
+    Ok((cleaned, Cleaning { applied: true, reason, changes: Some(changes) }))
+}
+
+/// The atlas's summary (the chart list sorted by surface area), with the
+/// input and output left empty for the caller.
+pub(crate) fn summarize(cleaning: Cleaning, method: &Method, atlas: &Atlas, per_corner: bool, time_ms: f64) -> Summary {
+    let s = &atlas.summary;
+    let mut chart_list: Vec<ChartSummary> = atlas.charts.iter().map(ChartSummary::from).collect();
+    chart_list.sort_by(|a, b| b.surface_area.total_cmp(&a.surface_area).then(a.component.cmp(&b.component)));
+    Summary {
+        input: String::new(),
+        output: String::new(),
+        vertices: 0,
+        faces: 0,
+        cleaning,
+        method: method.name().to_owned(),
+        charts: s.charts,
+        fallback_charts: s.fallback_charts,
+        faces_apart_charts: s.faces_apart_charts,
+        zero_area_charts: s.zero_area_charts,
+        seam_edges: atlas.charts.iter().map(|c| c.seam.len()).sum(),
+        per_corner,
+        scale: atlas.scale,
+        margin: atlas.margin,
+        coverage: s.coverage,
+        distortion: Distortion::from(&s.distortion),
+        collapsed_zero_area_faces: s.collapsed_zero_area_faces,
+        time_ms,
+        chart_list,
+    }
+}
+
+/// Does the work of `mesh param` but the printing.
+fn execute(args: &Args) -> CliResult<Summary> {
     let options = options(args)?;
+    let mode: CleanMode = args.clean.parse()?;
     check_not_input(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
-    let mesh = &data.mesh;
+    let (vertices, faces) = (data.mesh.vertex_count(), data.mesh.face_count());
     let start = Instant::now();
-    let p = parameterize_cut(mesh, &options)?;
+    let (mesh, cleaning) = prepare(data.mesh, mode)?;
+    let a = atlas(&mesh, &options)?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
-    let per_corner = !p.cut.seam.is_empty();
-    let corner_uvs = p.corner_uvs();
-    let view = if per_corner {
-        MeshView::new(mesh).with_corner_uvs(&corner_uvs)
-    } else {
-        MeshView::new(mesh).with_uvs(&p.param.uv)
+    let vertex_uvs = a.vertex_uvs(mesh.vertex_count());
+    let view = match &vertex_uvs {
+        Some(uv) => MeshView::new(&mesh).with_uvs(uv),
+        None => MeshView::new(&mesh).with_corner_uvs(&a.corner_uvs),
     };
     ensure_parent(&args.out)?;
     let write = mesh_io::WriteOptions { format: Some(mesh_io::Format::Obj), ..Default::default() };
     mesh_io::write(&args.out, view, &write)?;
-
-    let s: &DistortionSummary = &p.param.report.summary;
-    let summary = Summary {
+    Ok(Summary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
-        vertices: mesh.vertex_count(),
-        faces: mesh.face_count(),
-        method: options.method.name().to_owned(),
-        seam_edges: p.cut.seam.len(),
-        per_corner,
-        angle_distortion_mean: finite(s.angle_distortion_mean),
-        angle_distortion_max: finite(s.angle_distortion_max),
-        area_distortion_mean: finite(s.area_distortion_mean),
-        area_distortion_max: finite(s.area_distortion_max),
-        flipped_faces: s.flipped_faces,
-        collapsed_faces: s.collapsed_faces,
-        degenerate_faces: s.degenerate_faces,
-        dirichlet_area_ratio: finite(s.dirichlet_area_ratio),
-        boundary_simple: s.boundary_simple,
-        bijective: s.bijective,
-        time_ms,
-    };
+        vertices,
+        faces,
+        ..summarize(cleaning, &options.method, &a, vertex_uvs.is_none(), time_ms)
+    })
+}
+
+/// Runs `mesh param`.
+pub fn run(args: &Args) -> CliResult<()> {
+    let summary = execute(args)?;
     if args.json {
         return print_json(&summary);
     }
@@ -159,21 +345,69 @@ pub fn run(args: &Args) -> CliResult<()> {
     Ok(())
 }
 
+/// How many charts the text summary lists.
+const LISTED_CHARTS: usize = 10;
+
 fn print_text(s: &Summary) {
     let show = |x: Option<f64>| x.map_or("n/a".to_owned(), |v| format!("{v:.4}"));
     println!("mesh: {} ({} vertices, {} faces)", s.input, s.vertices, s.faces);
-    println!("  method             {}", s.method);
-    if s.per_corner {
-        println!("  cut                {} seam edges, UVs per corner", s.seam_edges);
+    match &s.cleaning.changes {
+        Some(changes) => {
+            let value = serde_json::to_value(changes).unwrap_or_default();
+            let counts: Vec<String> = value
+                .as_object()
+                .into_iter()
+                .flatten()
+                .filter(|(_, v)| v.as_u64().is_some_and(|n| n > 0))
+                .map(|(k, v)| format!("{k} {v}"))
+                .collect();
+            println!("  cleaning           {} ({})", counts.join(", "), s.cleaning.reason);
+        }
+        None => println!("  cleaning           none ({})", s.cleaning.reason),
     }
-    println!("  angle distortion   mean {}, max {}", show(s.angle_distortion_mean), show(s.angle_distortion_max));
-    println!("  area distortion    mean {}, max {}", show(s.area_distortion_mean), show(s.area_distortion_max));
-    println!("  dirichlet / area   {}", show(s.dirichlet_area_ratio));
+    println!("  method             {}", s.method);
     println!(
-        "  faces              {} flipped, {} collapsed, {} degenerate",
-        s.flipped_faces, s.collapsed_faces, s.degenerate_faces
+        "  charts             {} ({} fallback, {} faces apart, {} zero-area), {} seam edges, UVs per {}",
+        s.charts,
+        s.fallback_charts,
+        s.faces_apart_charts,
+        s.zero_area_charts,
+        s.seam_edges,
+        if s.per_corner { "corner" } else { "vertex" }
     );
-    println!("  bijective          {} (boundary simple: {})", s.bijective, s.boundary_simple);
+    println!(
+        "  packing            scale {:.4e} per unit length, margin {:.4}, coverage {:.3}",
+        s.scale, s.margin, s.coverage
+    );
+    let d = &s.distortion;
+    println!("  angle distortion   mean {}, max {}", show(d.angle_distortion_mean), show(d.angle_distortion_max));
+    println!("  area distortion    mean {}, max {}", show(d.area_distortion_mean), show(d.area_distortion_max));
+    println!("  dirichlet / area   {}", show(d.dirichlet_area_ratio));
+    println!(
+        "  faces              {} flipped, {} collapsed ({} of zero surface area), {} degenerate",
+        d.flipped_faces, d.collapsed_faces, s.collapsed_zero_area_faces, d.degenerate_faces
+    );
+    println!("  bijective          {} (boundaries simple: {})", d.bijective, d.boundary_simple);
+    println!("  largest charts     component, faces, genus, loops, seam, layout, angle mean, area mean, flipped");
+    for c in s.chart_list.iter().take(LISTED_CHARTS) {
+        let d = &c.distortion;
+        println!(
+            "    {:>6} {:>8} {:>4} {:>4} {:>6}  {:<10} {:>8} {:>8} {:>6}{}",
+            c.component,
+            c.faces,
+            c.genus,
+            c.boundary_loops,
+            c.seam_edges,
+            c.layout,
+            show(d.angle_distortion_mean),
+            show(d.area_distortion_mean),
+            d.flipped_faces,
+            c.fallback.as_ref().map_or(String::new(), |r| format!("  (fallback: {r})"))
+        );
+    }
+    if s.chart_list.len() > LISTED_CHARTS {
+        println!("    ... {} more (--json lists every chart)", s.chart_list.len() - LISTED_CHARTS);
+    }
     println!("  time (ms)          {:.2}", s.time_ms);
     println!("  wrote              {}", s.output);
 }
@@ -181,9 +415,19 @@ fn print_text(s: &Summary) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mesh_core::glam::DVec2;
 
     fn args(extra: &[&str]) -> Args {
         crate::commands::parse_args("param", extra)
+    }
+
+    /// The UVs of every face corner of a written OBJ.
+    fn corners(data: &mesh_io::MeshData) -> Vec<[DVec2; 3]> {
+        match (&data.uvs, &data.corner_uvs) {
+            (_, Some(c)) => c.clone(),
+            (Some(u), None) => data.mesh.faces().iter().map(|t| t.map(|v| u[v as usize])).collect(),
+            _ => Vec::new(),
+        }
     }
 
     #[test]
@@ -206,9 +450,9 @@ mod tests {
             let data = mesh_io::read(&out).unwrap();
             let uvs = data.uvs.as_ref().unwrap_or_else(|| panic!("{method}: no per-vertex UVs"));
             assert_eq!(uvs.len(), data.mesh.vertex_count());
-            assert!(uvs.iter().all(|q| q.is_finite() && q.min_element() >= -1e-9 && q.max_element() <= 1.0 + 1e-9));
+            assert!(uvs.iter().all(|q| q.is_finite() && q.min_element() >= 0.0 && q.max_element() <= 1.0));
         }
-        let square = ["--shape", "grid", "--res", "4", "--boundary", "square", "--method", "harmonic"];
+        let square = ["--shape", "grid", "--res", "4", "--boundary", "square", "--method", "harmonic", "--margin", "0"];
         let mut v = square.to_vec();
         v.extend(["--out", out.to_str().unwrap()]);
         run(&args(&v)).unwrap();
@@ -240,6 +484,8 @@ mod tests {
             &["--spacing", "random"],
             &["--method", "intrinsic", "--lambda=-1"],
             &["--method", "arap", "--iterations", "100000"],
+            &["--margin", "0.6"],
+            &["--clean", "sometimes"],
         ] {
             let mut v = vec!["--shape", "disk", "--res", "3", "--out", out];
             v.extend_from_slice(bad);
@@ -247,22 +493,64 @@ mod tests {
         }
     }
 
+    /// The invariants of an atlas written to `out`: every face has finite
+    /// UVs in [0, 1]^2, charts (faces grouped by `face_chart`) have disjoint
+    /// boxes, and no face is flipped when `tutte`.
+    fn check_atlas_file(out: &std::path::Path, summary: &Summary, tutte: bool) {
+        let data = mesh_io::read(out).unwrap();
+        let uv = corners(&data);
+        assert_eq!(uv.len(), data.mesh.face_count());
+        assert!(uv.iter().flatten().all(|q| q.is_finite() && q.min_element() >= 0.0 && q.max_element() <= 1.0));
+        let rects: Vec<[f64; 4]> = summary.chart_list.iter().map(|c| c.rect).collect();
+        for (i, a) in rects.iter().enumerate() {
+            for b in &rects[i + 1..] {
+                assert!(a[2] < b[0] || b[2] < a[0] || a[3] < b[1] || b[3] < a[1], "{a:?} meets {b:?}");
+            }
+        }
+        if tutte {
+            let flipped = uv.iter().filter(|q| (q[1] - q[0]).perp_dot(q[2] - q[0]) < 0.0).count();
+            assert_eq!(flipped, 0);
+            assert_eq!(summary.distortion.flipped_faces, 0);
+        }
+    }
+
     #[test]
-    fn shared_meshes_map_bijectively() {
+    fn shared_meshes_get_atlases() {
         let Some(dir) = crate::commands::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
-        for file in ["cgal_degtri_sliding.off", "cgal_nefertiti.off", "cgal_holes.off"] {
-            let out = tmp.path().join(format!("{file}.obj"));
-            let input = dir.join(file);
-            run(&args(&[input.to_str().unwrap(), "--method", "tutte", "--out", out.to_str().unwrap(), "--json"]))
-                .unwrap();
+        let mut files: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x != "md"))
+            .collect();
+        files.sort();
+        for input in files {
+            for method in ["tutte", "harmonic", "lscm"] {
+                let out = tmp.path().join("out.obj");
+                let a = args(&[input.to_str().unwrap(), "--method", method, "--out", out.to_str().unwrap()]);
+                let s = execute(&a).unwrap_or_else(|e| panic!("{} {method}: {e}", input.display()));
+                check_atlas_file(&out, &s, method == "tutte");
+            }
+        }
+    }
+
+    #[test]
+    fn several_components_are_packed_apart() {
+        let dir = tempfile::tempdir().unwrap();
+        let input = dir.path().join("two.obj");
+        let torus = mesh_core::shapes::torus(2.0, 0.5, 16, 8).unwrap();
+        let sphere = mesh_core::shapes::icosphere(2).unwrap();
+        let (mut p, mut f) = torus.into_parts();
+        let n = p.len() as u32;
+        p.extend(sphere.positions().iter().map(|q| *q + mesh_core::glam::DVec3::X * 5.0));
+        f.extend(sphere.faces().iter().map(|t| t.map(|v| v + n)));
+        mesh_io::write(&input, &TriMesh::new(p, f).unwrap(), &Default::default()).unwrap();
+        let out = dir.path().join("two_uv.obj");
+        for method in ["tutte", "harmonic", "lscm"] {
+            run(&args(&[input.to_str().unwrap(), "--method", method, "--out", out.to_str().unwrap()])).unwrap();
             let data = mesh_io::read(&out).unwrap();
-            let finite = match (&data.uvs, &data.corner_uvs) {
-                (_, Some(c)) => c.iter().flatten().all(|q| q.is_finite()),
-                (Some(u), None) => u.iter().all(|q| q.is_finite()),
-                _ => false,
-            };
-            assert!(finite, "{file}");
+            let uv = corners(&data);
+            assert!(uv.iter().flatten().all(|q| q.is_finite() && q.min_element() >= 0.0 && q.max_element() <= 1.0));
         }
     }
 }

@@ -2,11 +2,11 @@
 //! mesh and writes, into one folder, a JSON report and files a viewer opens
 //! directly: `mesh.ply` (normals and every per-vertex field: curvatures,
 //! geodesic distance, first harmonic, heat kernel signature), PNG pictures
-//! of the fields, the parameterization as `uv.obj`, the traced geodesic and
+//! of the fields, the texture atlas as `uv.obj`, the traced geodesic and
 //! the feature edges as OBJ polylines.
 //!
 //! A section that does not apply to the mesh (a parameterization of a mesh
-//! that cannot be cut to a disk, wavelets without subdivision connectivity)
+//! that cleaning cannot make manifold, wavelets without subdivision connectivity)
 //! records why in the report instead of failing the whole run.
 
 use std::path::{Path, PathBuf};
@@ -337,28 +337,34 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     Ok(section)
 }
 
-/// Harmonic parameterization (eq. 2.14-2.15), cutting the mesh to a disk
-/// first when it is not one, and its distortion (eq. 2.8-2.11).
+/// Harmonic texture atlas (eq. 2.14-2.15; `mesh param`'s pipeline): the mesh
+/// cleaned into an oriented manifold when it is not one, each component cut
+/// to a disk, flattened onto a circle, scaled to its area and packed into the
+/// unit square; the distortion of the whole and of each chart (eq. 2.8-2.11).
+/// `uv.obj` holds the (cleaned) mesh with one UV per face corner.
 fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
-    use mesh_param::{parameterize_cut, Method, Options};
-    let options = Options { method: Method::Harmonic, ..Options::default() };
-    let p = report.time("param_harmonic", || parameterize_cut(mesh, &options))?;
+    use super::param::{prepare, summarize, CleanMode};
+    use mesh_param::{atlas, AtlasOptions, Method};
+    let options = AtlasOptions { method: Method::Harmonic, ..AtlasOptions::default() };
+    let start = Instant::now();
+    let (cleaned, cleaning) = report.time("param_clean", || prepare(mesh.clone(), CleanMode::Auto))?;
+    let a = report.time("param_harmonic", || atlas(&cleaned, &options))?;
+    let time_ms = start.elapsed().as_secs_f64() * 1e3;
     let uv_obj = report.file("uv.obj")?;
-    mesh_io::write(&uv_obj, MeshView::new(&p.cut.mesh).with_uvs(&p.param.uv), &mesh_io::WriteOptions::default())?;
-    let s = &p.param.report.summary;
-    Ok(json!({
-        "method": "harmonic",
-        "boundary": "circle, chord length",
-        "seam_edges": p.cut.seam.len(),
-        "cut_vertices": p.cut.mesh.vertex_count(),
-        "flipped_faces": s.flipped_faces,
-        "bijective": s.bijective,
-        "angle_distortion_mean": s.angle_distortion_mean,
-        "angle_distortion_max": s.angle_distortion_max,
-        "area_distortion_mean": s.area_distortion_mean,
-        "area_distortion_max": s.area_distortion_max,
-        "dirichlet_area_ratio": s.dirichlet_area_ratio,
-    }))
+    let view = MeshView::new(&cleaned).with_corner_uvs(&a.corner_uvs);
+    mesh_io::write(&uv_obj, view, &mesh_io::WriteOptions::default())?;
+    let summary = super::param::Summary {
+        output: "uv.obj".to_owned(),
+        vertices: mesh.vertex_count(),
+        faces: mesh.face_count(),
+        ..summarize(cleaning, &options.method, &a, true, time_ms)
+    };
+    let mut section = serde_json::to_value(&summary)?;
+    if let Some(map) = section.as_object_mut() {
+        map.remove("input");
+        map.insert("boundary".into(), json!("circle, chord length"));
+    }
+    Ok(section)
 }
 
 /// The 20 smallest eigenpairs of the largest connected component (Laplacian
