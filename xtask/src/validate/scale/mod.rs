@@ -22,6 +22,8 @@ use mesh_wavelet::Scheme;
 
 use super::{shared_data, Validator};
 
+mod param;
+
 type Res<T> = std::result::Result<T, String>;
 
 /// The large meshes of the scale checks, each built or read on first use.
@@ -108,7 +110,7 @@ fn dragon_path() -> Res<PathBuf> {
 type Part = (&'static str, fn(&mut Validator, &ScaleMeshes));
 
 /// Every part, in the order they run.
-const PARTS: &[Part] = &[("curvature", curvature::run), ("spectral", spectral::run)];
+const PARTS: &[Part] = &[("curvature", curvature::run), ("spectral", spectral::run), ("param", param::run)];
 
 /// Runs every scale check.
 pub fn run(v: &mut Validator) {
