@@ -1,6 +1,7 @@
 //! Atlases: a texture atlas of any oriented manifold mesh, whatever its
 //! number of components, genus and boundary loops. Each connected component
-//! becomes one chart: cut into a topological disk ([`crate::cut_to_disk`],
+//! (or, with [`AtlasOptions::max_chart_faces`], each region of a component
+//! split by [`crate::segment`]) becomes one chart: cut into a topological disk ([`crate::cut_to_disk`],
 //! tree-cotree), flattened with the chosen method, scaled to its 3D size
 //! (every chart keeps its share of the surface area: parameter area
 //! proportional to surface area), turned to its smallest bounding box, and
@@ -8,17 +9,17 @@
 //! Each face gets one UV per corner (vertices along seams and on several
 //! charts get several), and each chart its distortion (eq. 2.8-2.11).
 //!
-//! A component the method cannot flatten (a solver failure, a square
+//! A piece the method cannot flatten (a solver failure, a square
 //! boundary on a triangle, a non-finite coordinate) is flattened by Tutte's
 //! map onto a circle instead, and failing that laid out face by face
 //! ([`ChartLayout::FacesApart`]: each triangle on its own with its 3D edge
 //! lengths); such a chart carries the reason in [`Chart::fallback`]. A
-//! component without area (all faces zero-area) is sized by its 3D extent
+//! piece without area (all faces zero-area) is sized by its 3D extent
 //! and flagged [`Chart::zero_area`]. Nothing of this makes the whole call
 //! fail.
 
 use glam::{DVec2, DVec3};
-use mesh_core::{geometry, FaceId, TriMesh, VertexId};
+use mesh_core::{geometry, FaceId, SubMesh, TriMesh, VertexId};
 
 use crate::boundary::{BoundaryMap, Spacing};
 use crate::cut::cut_to_disk;
@@ -27,6 +28,7 @@ use crate::error::{ParamError, Result};
 use crate::fixed::DegeneratePolicy;
 use crate::pack::{min_area_rotation, pack_rectangles, UvRect};
 use crate::param::{map_disk, Method, Options};
+use crate::segment::{chart_labels, chart_pieces};
 use crate::topology::Topology;
 
 /// Options of [`atlas`].
@@ -41,11 +43,15 @@ pub struct AtlasOptions {
     /// Gap between charts in the unit square (half of it to the square's
     /// sides), default 1/256; made smaller when the charts are too many for it.
     pub margin: f64,
+    /// Split components of more faces into regions of about this many
+    /// (farthest-point Voronoi regions, [`crate::segment`]); `None`
+    /// (default): one chart per component. Smaller charts distort less.
+    pub max_chart_faces: Option<usize>,
 }
 
 impl Default for AtlasOptions {
     fn default() -> Self {
-        Self { method: Method::MeanValue, boundary: BoundaryMap::default(), margin: 1.0 / 256.0 }
+        Self { method: Method::MeanValue, boundary: BoundaryMap::default(), margin: 1.0 / 256.0, max_chart_faces: None }
     }
 }
 
@@ -68,27 +74,30 @@ impl std::fmt::Display for ChartLayout {
     }
 }
 
-/// One chart of an [`Atlas`]: a connected component of the input, cut open.
+/// One chart of an [`Atlas`]: a connected component of the input (or a
+/// region of one), cut open.
 ///
 /// The chart is a mesh of its own ([`Chart::mesh`], a topological disk for
 /// [`ChartLayout::Method`]) with one UV per chart vertex; its boundary loop
 /// (`chart.mesh.connectivity().boundary_loops()`) is the outline of the
-/// chart's parameter domain, made of the component's own boundary loops and
-/// both sides of its seam.
+/// chart's parameter domain, made of the piece's own boundary loops (those
+/// of the surface and, for a region, the borders with the neighbouring
+/// charts) and both sides of its seam.
 #[derive(Debug, Clone)]
 pub struct Chart {
-    /// The connected component of the input (numbered as in
+    /// The connected component of the input it belongs to (numbered as in
     /// `mesh_core::Connectivity::components`).
     pub component: usize,
-    /// Topology of the component before cutting.
+    /// Topology of the piece before cutting.
     pub topology: Topology,
-    /// The component cut open: face k is input face `faces[k]` with the same
+    /// The piece cut open: face k is input face `faces[k]` with the same
     /// corner order, its vertices are copies of input vertices.
     pub mesh: TriMesh,
     /// The input face of each chart face.
     pub faces: Vec<FaceId>,
     /// The input vertex of each chart vertex (vertices on the seam appear
-    /// once per side).
+    /// once per side, and once per fan where the piece touches itself at a
+    /// vertex).
     pub vertices: Vec<VertexId>,
     /// The input edges cut open, as pairs of input vertices.
     pub seam: Vec<[VertexId; 2]>,
@@ -100,10 +109,10 @@ pub struct Chart {
     pub layout: ChartLayout,
     /// Why the chosen method was not used, when it was not.
     pub fallback: Option<String>,
-    /// The component has no surface area (every face zero-area); its size
+    /// The piece has no surface area (every face zero-area); its size
     /// comes from its 3D extent.
     pub zero_area: bool,
-    /// Surface area of the component.
+    /// Surface area of the piece.
     pub surface_area: f64,
     /// Distortion of the chart's map (eq. 2.8-2.11; area distortion relative
     /// to the chart's own area ratio).
@@ -113,7 +122,7 @@ pub struct Chart {
 /// Totals over an [`Atlas`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AtlasSummary {
-    /// Number of charts (= connected components with faces).
+    /// Number of charts.
     pub charts: usize,
     /// Charts not flattened with the chosen method ([`Chart::fallback`]).
     pub fallback_charts: usize,
@@ -139,7 +148,7 @@ pub struct Atlas {
     pub corner_uvs: Vec<[DVec2; 3]>,
     /// The chart of each input face (index into [`Atlas::charts`]).
     pub face_chart: Vec<u32>,
-    /// The charts, in order of component.
+    /// The charts, in order of component (and of region inside one).
     pub charts: Vec<Chart>,
     /// UV units per unit of surface length (the same for all charts).
     pub scale: f64,
@@ -169,7 +178,7 @@ impl Atlas {
 /// Builds a texture atlas of `mesh` (see the module documentation). Needs an
 /// oriented manifold (non-manifold input is the wrapped
 /// `mesh_core::MeshError::NonManifold`; `mesh_core::clean` repairs it).
-/// Cost: per component, that of [`crate::cut_to_disk`] and of the method
+/// Cost: per chart, that of [`crate::cut_to_disk`] and of the method
 /// (one sparse factorization), plus O(F) for the distortion and the
 /// packing's O(c^2) for c charts (about 20 trial packings).
 ///
@@ -203,11 +212,13 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
     options.method.validate()?;
     pack_rectangles(&[], options.margin)?;
     let conn = mesh.manifold_connectivity()?;
-    let groups = faces_by_component(&conn.components().face_component, conn.components().count);
+    let (labels, count) = chart_labels(mesh, options.max_chart_faces)?;
+    let pieces = chart_pieces(mesh, &labels, count)?;
     let fallback_length = geometry::mean_edge_length(mesh);
-    let mut flats = Vec::with_capacity(groups.len());
-    for (component, faces) in groups.into_iter().enumerate() {
-        flats.push(flatten_component(mesh, component, faces, options, fallback_length)?);
+    let mut flats = Vec::with_capacity(pieces.len());
+    for piece in pieces {
+        let component = piece.faces.first().map_or(0, |f| conn.components().face_component[f.idx()] as usize);
+        flats.push(flatten_piece(piece, component, options, fallback_length)?);
     }
     let sizes: Vec<DVec2> = flats.iter().map(|f| f.size).collect();
     let packing = pack_rectangles(&sizes, options.margin)?;
@@ -258,15 +269,6 @@ fn map_options(method: Method, boundary: &BoundaryMap) -> Options {
     Options { method, boundary: boundary.clone(), degenerate: DegeneratePolicy::Uniform, normalize: false }
 }
 
-/// Input faces of each component, in face order (counting sort). O(F).
-fn faces_by_component(face_component: &[u32], count: usize) -> Vec<Vec<FaceId>> {
-    let mut groups = vec![Vec::new(); count];
-    for (f, &c) in face_component.iter().enumerate() {
-        groups[c as usize].push(FaceId::new(f));
-    }
-    groups
-}
-
 /// A chart before packing: UVs in surface units, turned to their smallest
 /// box, lower-left corner at the origin.
 struct Flat {
@@ -284,17 +286,10 @@ struct Flat {
     surface_area: f64,
 }
 
-/// Flattens one component: the chosen method, else Tutte onto a circle, else
+/// Flattens one piece: the chosen method, else Tutte onto a circle, else
 /// faces apart; then scales it to its surface size and turns it to its
-/// smallest box. O(size of the component) plus the method's factorization.
-fn flatten_component(
-    mesh: &TriMesh,
-    component: usize,
-    faces: Vec<FaceId>,
-    options: &AtlasOptions,
-    fallback_length: f64,
-) -> Result<Flat> {
-    let sub = mesh.submesh(&faces)?;
+/// smallest box. O(size of the piece) plus the method's factorization.
+fn flatten_piece(sub: SubMesh, component: usize, options: &AtlasOptions, fallback_length: f64) -> Result<Flat> {
     let topology = Topology::of(&sub.mesh)?;
     let tutte = (Method::Tutte, BoundaryMap::Circle(Spacing::ChordLength));
     let mut attempts = vec![(options.method, options.boundary.clone())];
@@ -345,10 +340,10 @@ fn flatten_component(
     })
 }
 
-/// Cuts a component to a disk and maps it; a non-finite coordinate is an
+/// Cuts a piece to a disk and maps it; a non-finite coordinate is an
 /// error.
-fn disk_map(component: &TriMesh, options: &Options) -> Result<(crate::cut::CutMesh, Vec<DVec2>)> {
-    let cut = cut_to_disk(component)?;
+fn disk_map(piece: &TriMesh, options: &Options) -> Result<(crate::cut::CutMesh, Vec<DVec2>)> {
+    let cut = cut_to_disk(piece)?;
     let (uv, _) = map_disk(&cut.mesh, options)?;
     if let Some(vertex) = uv.iter().position(|q| !q.is_finite()) {
         return Err(ParamError::NonFinite { vertex });
@@ -358,9 +353,9 @@ fn disk_map(component: &TriMesh, options: &Options) -> Result<(crate::cut::CutMe
 
 /// Scale from the map's units to surface units: sqrt(surface area /
 /// parameter area), so that the chart keeps its share of the area; for a
-/// component without area (or a map without area), the ratio of the
-/// bounding-box diagonals, with `fallback_length` for a component collapsed
-/// to a point. Returns the factor and whether the component has no area. O(F).
+/// piece without area (or a map without area), the ratio of the
+/// bounding-box diagonals, with `fallback_length` for a piece collapsed to a
+/// point. Returns the factor and whether the piece has no area. O(F).
 fn surface_factor(mesh: &TriMesh, uv: &[DVec2], surface_area: f64, fallback_length: f64) -> (f64, bool) {
     let uv_area: f64 = mesh
         .faces()
@@ -522,6 +517,25 @@ mod tests {
             .iter()
             .flatten()
             .all(|q| q.is_finite() && q.cmpge(DVec2::ZERO).all() && q.cmple(DVec2::ONE).all()));
+    }
+
+    #[test]
+    fn split_charts_distort_less() {
+        // A sphere cut into one disk crowds half of it near the centre;
+        // regions of at most 320 faces are nearly flat caps.
+        let sphere = shapes::icosphere(4).unwrap();
+        let one = atlas(&sphere, &AtlasOptions { method: Method::Tutte, ..Default::default() }).unwrap();
+        let options = AtlasOptions { method: Method::Tutte, max_chart_faces: Some(320), ..Default::default() };
+        let split = atlas(&sphere, &options).unwrap();
+        assert_eq!((one.charts.len(), split.charts.len()), (1, 5120 / 320));
+        let (a, b) = (one.summary.distortion, split.summary.distortion);
+        assert!(b.flipped_faces == 0 && b.collapsed_faces == 0 && b.bijective);
+        assert!(b.area_distortion_mean < a.area_distortion_mean, "{b:?} vs {a:?}");
+        assert!(b.angle_distortion_mean < a.angle_distortion_mean, "{b:?} vs {a:?}");
+        for (i, c) in split.charts.iter().enumerate() {
+            assert!(c.faces.len() <= 3 * 320, "{}", c.faces.len());
+            assert!(split.charts[i + 1..].iter().all(|d| !c.rect.meets(&d.rect)));
+        }
     }
 
     #[test]

@@ -18,6 +18,7 @@ use mesh_core::{Connectivity, EdgeId, HalfedgeId, TriMesh, VertexId, VertexKind}
 
 use crate::error::{ParamError, Result};
 use crate::topology::{require_disk, Topology};
+use crate::union_find::union;
 
 /// A mesh cut open into a disk: the same faces in the same order, with the
 /// vertices along the seam duplicated (one copy per side).
@@ -192,21 +193,10 @@ fn tree_cotree(conn: &Connectivity, graph: &Graph, root: usize, cut: &mut [bool]
     for (_, e) in candidates {
         let hs = conn.edge_halfedges(EdgeId::new(e));
         let (f, g) = (hs[0].face().0, hs[1].face().0);
-        let (rf, rg) = (find(&mut faces, f), find(&mut faces, g));
-        if rf != rg {
-            faces[rf.max(rg) as usize] = rf.min(rg);
+        if union(&mut faces, f, g) {
             cut[e] = false;
         }
     }
-}
-
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let p = parent[i as usize];
-        parent[i as usize] = parent[p as usize];
-        i = p;
-    }
-    i
 }
 
 /// Removes dangling seam edges: an interior cut edge with an endpoint that

@@ -15,6 +15,7 @@
 //! | [`param`] | [`parameterize`] and [`parameterize_cut`], the entry points | |
 //! | [`mod@atlas`] | [`atlas()`]: any manifold mesh, one chart per component, packed into the unit square | |
 //! | [`pack`] | smallest bounding box of a chart, skyline packing of boxes | Freeman-Shapira 1975, Jylanki 2010 |
+//! | [`segment`] | charts: components, optionally split into farthest-point Voronoi regions; one manifold piece each | Gonzalez 1985 |
 //!
 //! ```
 //! use mesh_param::{parameterize, BoundaryMap, Method, Options, Spacing};
@@ -55,7 +56,9 @@ pub mod fixed;
 pub mod lscm;
 pub mod pack;
 pub mod param;
+pub mod segment;
 pub mod topology;
+mod union_find;
 pub mod weights;
 
 pub use arap::Arap;

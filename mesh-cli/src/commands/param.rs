@@ -49,6 +49,10 @@ pub struct Args {
     /// Gap between charts in the unit square.
     #[arg(long, value_name = "M", default_value_t = 1.0 / 256.0)]
     margin: f64,
+    /// Split components of more faces into charts of about N faces
+    /// (farthest-point regions); default: one chart per component.
+    #[arg(long, value_name = "N")]
+    max_chart_faces: Option<usize>,
     /// Repair the mesh first: auto (only when it is not an oriented
     /// manifold), always, or never (refuse such a mesh).
     #[arg(long, default_value = "auto")]
@@ -251,7 +255,7 @@ fn options(args: &Args) -> CliResult<AtlasOptions> {
         "square" => BoundaryMap::Square,
         other => return Err(format!("unknown --boundary `{other}`; known: circle, square").into()),
     };
-    Ok(AtlasOptions { method, boundary, margin: args.margin })
+    Ok(AtlasOptions { method, boundary, margin: args.margin, max_chart_faces: args.max_chart_faces })
 }
 
 /// Cleans `mesh` as `mode` says so that it becomes an oriented manifold
