@@ -14,11 +14,11 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
+use mesh_core::union_find::UnionFind;
 use mesh_core::{Connectivity, EdgeId, HalfedgeId, TriMesh, VertexId, VertexKind};
 
 use crate::error::{ParamError, Result};
 use crate::topology::{require_disk, Topology};
-use crate::union_find::union;
 
 /// A mesh cut open into a disk: the same faces in the same order, with the
 /// vertices along the seam duplicated (one copy per side).
@@ -186,14 +186,14 @@ fn tree_cotree(conn: &Connectivity, graph: &Graph, root: usize, cut: &mut [bool]
     candidates.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     // Tree edges come last, only where needed to connect the dual tree.
     candidates.extend((0..conn.edge_count()).filter(|&e| interior(e) && in_tree[e]).map(|e| (0.0, e)));
-    let mut faces: Vec<u32> = (0..conn.face_count() as u32).collect();
+    let mut faces = UnionFind::new(conn.face_count());
     for e in 0..conn.edge_count() {
         cut[e] = interior(e);
     }
     for (_, e) in candidates {
         let hs = conn.edge_halfedges(EdgeId::new(e));
         let (f, g) = (hs[0].face().0, hs[1].face().0);
-        if union(&mut faces, f, g) {
+        if faces.union(f, g) {
             cut[e] = false;
         }
     }

@@ -58,7 +58,6 @@ pub mod pack;
 pub mod param;
 pub mod segment;
 pub mod topology;
-mod union_find;
 pub mod weights;
 
 pub use arap::Arap;

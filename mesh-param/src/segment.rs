@@ -16,10 +16,10 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use glam::DVec3;
+use mesh_core::union_find::UnionFind;
 use mesh_core::{Connectivity, FaceId, HalfedgeId, SubMesh, TriMesh, VertexId};
 
 use crate::error::{ParamError, Result};
-use crate::union_find::{find, union};
 
 /// The chart of each face and the number of charts: connected components,
 /// each split into ceil(faces / `max_faces`) Voronoi regions when
@@ -189,7 +189,7 @@ pub fn chart_pieces(mesh: &TriMesh, labels: &[u32], count: usize) -> Result<Vec<
         ))
         .into());
     }
-    let mut parent: Vec<u32> = (0..3 * mesh.face_count() as u32).collect();
+    let mut corners = UnionFind::new(3 * mesh.face_count());
     for f in 0..mesh.face_count() {
         for k in 0..3 {
             let Some(twin) = conn.twin(HalfedgeId::of_corner(FaceId::new(f), k)) else { continue };
@@ -199,8 +199,8 @@ pub fn chart_pieces(mesh: &TriMesh, labels: &[u32], count: usize) -> Result<Vec<
             }
             // h runs corner k -> k + 1 of f; its twin corner j -> j + 1 of g.
             let j = twin.corner();
-            union(&mut parent, (3 * f + k) as u32, (3 * g + (j + 1) % 3) as u32);
-            union(&mut parent, (3 * f + (k + 1) % 3) as u32, (3 * g + j) as u32);
+            corners.union((3 * f + k) as u32, (3 * g + (j + 1) % 3) as u32);
+            corners.union((3 * f + (k + 1) % 3) as u32, (3 * g + j) as u32);
         }
     }
     let mut pieces: Vec<Piece> = vec![Default::default(); count];
@@ -208,7 +208,7 @@ pub fn chart_pieces(mesh: &TriMesh, labels: &[u32], count: usize) -> Result<Vec<
     for (f, tri) in mesh.faces().iter().enumerate() {
         let (faces, vertices, tris) = &mut pieces[labels[f] as usize];
         let corners = [0, 1, 2].map(|k| {
-            let root = find(&mut parent, (3 * f + k) as u32) as usize;
+            let root = corners.find((3 * f + k) as u32) as usize;
             if local[root] == u32::MAX {
                 local[root] = vertices.len() as u32;
                 vertices.push(VertexId(tri[k]));

@@ -11,6 +11,7 @@
 //! built in memory and never written into the repository.
 
 mod curvature;
+mod param;
 mod spectral;
 
 use std::cell::OnceCell;
@@ -21,8 +22,6 @@ use mesh_core::{shapes, TriMesh};
 use mesh_wavelet::Scheme;
 
 use super::{shared_data, Validator};
-
-mod param;
 
 type Res<T> = std::result::Result<T, String>;
 
