@@ -47,11 +47,21 @@ pub struct AtlasOptions {
     /// (farthest-point Voronoi regions, [`crate::segment`]); `None`
     /// (default): one chart per component. Smaller charts distort less.
     pub max_chart_faces: Option<usize>,
+    /// Split a chart in two, again and again, while its mean area distortion
+    /// (area-weighted mean of max(r, 1/r), eq. 2.8-2.9) exceeds this value
+    /// (at least 1); `None` (default): never.
+    pub max_area_distortion: Option<f64>,
 }
 
 impl Default for AtlasOptions {
     fn default() -> Self {
-        Self { method: Method::MeanValue, boundary: BoundaryMap::default(), margin: 1.0 / 256.0, max_chart_faces: None }
+        Self {
+            method: Method::MeanValue,
+            boundary: BoundaryMap::default(),
+            margin: 1.0 / 256.0,
+            max_chart_faces: None,
+            max_area_distortion: None,
+        }
     }
 }
 
@@ -211,6 +221,12 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
     // The method and the margin are checked before any work.
     options.method.validate()?;
     pack_rectangles(&[], options.margin)?;
+    if let Some(limit) = options.max_area_distortion.filter(|x| !(x.is_finite() && *x >= 1.0)) {
+        return Err(ParamError::InvalidOption {
+            name: "max_area_distortion",
+            reason: format!("need a finite value >= 1, got {limit}"),
+        });
+    }
     let conn = mesh.manifold_connectivity()?;
     let (labels, count) = chart_labels(mesh, options.max_chart_faces)?;
     let pieces = chart_pieces(mesh, &labels, count)?;
@@ -218,7 +234,7 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
     let mut flats = Vec::with_capacity(pieces.len());
     for piece in pieces {
         let component = piece.faces.first().map_or(0, |f| conn.components().face_component[f.idx()] as usize);
-        flats.push(flatten_piece(piece, component, options, fallback_length)?);
+        flatten_bounded(piece, component, options, fallback_length, &mut flats)?;
     }
     let sizes: Vec<DVec2> = flats.iter().map(|f| f.size).collect();
     let packing = pack_rectangles(&sizes, options.margin)?;
@@ -286,10 +302,48 @@ struct Flat {
     surface_area: f64,
 }
 
+/// Flattens `piece` into `out`; while its mean area distortion exceeds
+/// [`AtlasOptions::max_area_distortion`], splits it in two (two
+/// farthest-point regions, [`crate::segment`]) and flattens the halves
+/// instead. Cost: that of [`flatten_piece`] per level, about log2(F) levels
+/// at worst.
+fn flatten_bounded(
+    piece: SubMesh,
+    component: usize,
+    options: &AtlasOptions,
+    fallback_length: f64,
+    out: &mut Vec<Flat>,
+) -> Result<()> {
+    let flat = flatten_piece(&piece, component, options, fallback_length)?;
+    let too_distorted = match options.max_area_distortion {
+        Some(limit) if piece.faces.len() > 1 => distortion(&flat.mesh, &flat.uv)?.summary.area_distortion_mean > limit,
+        _ => false,
+    };
+    let halves = if too_distorted {
+        let (labels, count) = chart_labels(&piece.mesh, Some(piece.faces.len().div_ceil(2)))?;
+        chart_pieces(&piece.mesh, &labels, count)?
+    } else {
+        Vec::new()
+    };
+    if halves.len() < 2 {
+        out.push(flat);
+        return Ok(());
+    }
+    for half in halves {
+        let half = SubMesh {
+            mesh: half.mesh,
+            vertices: half.vertices.iter().map(|v| piece.vertices[v.idx()]).collect(),
+            faces: half.faces.iter().map(|f| piece.faces[f.idx()]).collect(),
+        };
+        flatten_bounded(half, component, options, fallback_length, out)?;
+    }
+    Ok(())
+}
+
 /// Flattens one piece: the chosen method, else Tutte onto a circle, else
 /// faces apart; then scales it to its surface size and turns it to its
 /// smallest box. O(size of the piece) plus the method's factorization.
-fn flatten_piece(sub: SubMesh, component: usize, options: &AtlasOptions, fallback_length: f64) -> Result<Flat> {
+fn flatten_piece(sub: &SubMesh, component: usize, options: &AtlasOptions, fallback_length: f64) -> Result<Flat> {
     let topology = Topology::of(&sub.mesh)?;
     let tutte = (Method::Tutte, BoundaryMap::Circle(Spacing::ChordLength));
     let mut attempts = vec![(options.method, options.boundary.clone())];
@@ -328,7 +382,7 @@ fn flatten_piece(sub: SubMesh, component: usize, options: &AtlasOptions, fallbac
         component,
         topology,
         mesh: chart_mesh,
-        faces: sub.faces,
+        faces: sub.faces.clone(),
         vertices,
         seam,
         uv,
@@ -536,6 +590,20 @@ mod tests {
             assert!(c.faces.len() <= 3 * 320, "{}", c.faces.len());
             assert!(split.charts[i + 1..].iter().all(|d| !c.rect.meets(&d.rect)));
         }
+    }
+
+    #[test]
+    fn charts_are_split_until_distortion_is_bounded() {
+        let sphere = shapes::icosphere(4).unwrap();
+        let options = AtlasOptions { max_area_distortion: Some(1.5), ..Default::default() };
+        let a = atlas(&sphere, &options).unwrap();
+        assert!(a.charts.len() > 1);
+        for c in &a.charts {
+            assert!(c.distortion.area_distortion_mean <= 1.5 || c.faces.len() == 1, "{:?}", c.distortion);
+        }
+        assert_eq!(a.charts.iter().map(|c| c.faces.len()).sum::<usize>(), sphere.face_count());
+        let bad = AtlasOptions { max_area_distortion: Some(0.5), ..Default::default() };
+        assert!(atlas(&sphere, &bad).is_err());
     }
 
     #[test]

@@ -53,6 +53,10 @@ pub struct Args {
     /// (farthest-point regions); default: one chart per component.
     #[arg(long, value_name = "N")]
     max_chart_faces: Option<usize>,
+    /// Split charts in two while their mean area distortion (area-weighted
+    /// mean of max(r, 1/r)) exceeds D (at least 1); default: never.
+    #[arg(long, value_name = "D")]
+    max_area_distortion: Option<f64>,
     /// Repair the mesh first: auto (only when it is not an oriented
     /// manifold), always, or never (refuse such a mesh).
     #[arg(long, default_value = "auto")]
@@ -255,7 +259,13 @@ fn options(args: &Args) -> CliResult<AtlasOptions> {
         "square" => BoundaryMap::Square,
         other => return Err(format!("unknown --boundary `{other}`; known: circle, square").into()),
     };
-    Ok(AtlasOptions { method, boundary, margin: args.margin, max_chart_faces: args.max_chart_faces })
+    Ok(AtlasOptions {
+        method,
+        boundary,
+        margin: args.margin,
+        max_chart_faces: args.max_chart_faces,
+        max_area_distortion: args.max_area_distortion,
+    })
 }
 
 /// Cleans `mesh` as `mode` says so that it becomes an oriented manifold
@@ -349,25 +359,32 @@ pub fn run(args: &Args) -> CliResult<()> {
     Ok(())
 }
 
+/// Mean area distortion above which the text summary suggests smaller charts.
+const DISTORTION_HINT: f64 = 10.0;
+
 /// How many charts the text summary lists.
 const LISTED_CHARTS: usize = 10;
 
 fn print_text(s: &Summary) {
     let show = |x: Option<f64>| x.map_or("n/a".to_owned(), |v| format!("{v:.4}"));
     println!("mesh: {} ({} vertices, {} faces)", s.input, s.vertices, s.faces);
+    // The first clause of the reason: the full defect list is in --json.
+    let reason = s.cleaning.reason.split(':').next().unwrap_or_default();
     match &s.cleaning.changes {
         Some(changes) => {
             let value = serde_json::to_value(changes).unwrap_or_default();
-            let counts: Vec<String> = value
-                .as_object()
+            let fields = value.as_object();
+            let count = |k: &str| fields.and_then(|m| m.get(k)).and_then(|v| v.as_u64()).unwrap_or(0);
+            let counts: Vec<String> = fields
                 .into_iter()
                 .flatten()
-                .filter(|(_, v)| v.as_u64().is_some_and(|n| n > 0))
+                .filter(|(k, v)| !["vertices", "faces"].contains(&k.as_str()) && v.as_u64().is_some_and(|n| n > 0))
                 .map(|(k, v)| format!("{k} {v}"))
                 .collect();
-            println!("  cleaning           {} ({})", counts.join(", "), s.cleaning.reason);
+            println!("  cleaning           {} ({reason})", counts.join(", "));
+            println!("  cleaned mesh       {} vertices, {} faces", count("vertices"), count("faces"));
         }
-        None => println!("  cleaning           none ({})", s.cleaning.reason),
+        None => println!("  cleaning           none ({reason})"),
     }
     println!("  method             {}", s.method);
     println!(
@@ -392,6 +409,9 @@ fn print_text(s: &Summary) {
         d.flipped_faces, d.collapsed_faces, s.collapsed_zero_area_faces, d.degenerate_faces
     );
     println!("  bijective          {} (boundaries simple: {})", d.bijective, d.boundary_simple);
+    if d.area_distortion_mean.is_none_or(|x| x > DISTORTION_HINT) {
+        println!("  hint               smaller charts distort less: --max-chart-faces 5000 --max-area-distortion 2");
+    }
     println!("  largest charts     component, faces, genus, loops, seam, layout, angle mean, area mean, flipped");
     for c in s.chart_list.iter().take(LISTED_CHARTS) {
         let d = &c.distortion;
@@ -489,6 +509,8 @@ mod tests {
             &["--method", "intrinsic", "--lambda=-1"],
             &["--method", "arap", "--iterations", "100000"],
             &["--margin", "0.6"],
+            &["--max-area-distortion", "0.9"],
+            &["--max-chart-faces", "0"],
             &["--clean", "sometimes"],
         ] {
             let mut v = vec!["--shape", "disk", "--res", "3", "--out", out];

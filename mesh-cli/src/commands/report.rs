@@ -337,26 +337,35 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     Ok(section)
 }
 
-/// Charts of at most about this many faces in the report's atlas: a whole
-/// scanned component in one chart is crowded around its seams (the full
-/// Stanford dragon's main component: mean area distortion 3e5 in one chart,
-/// 2.8 in charts of 2,000 faces).
-const REPORT_CHART_FACES: usize = 2000;
+/// The report's atlas: charts of at most about this many faces, split
+/// further while their mean area distortion exceeds [`REPORT_AREA_DISTORTION`].
+/// A whole scanned component in one chart is crowded around its seams (the
+/// full Stanford dragon's main component in one mean-value chart: mean area
+/// distortion about 1e6; in charts bounded this way: 1.4).
+const REPORT_CHART_FACES: usize = 5000;
 
-/// Harmonic texture atlas (eq. 2.14-2.15; `mesh param`'s pipeline): the mesh
-/// cleaned into an oriented manifold when it is not one, each component (or
-/// region of [`REPORT_CHART_FACES`] faces) cut to a disk, flattened onto a
-/// circle, scaled to its area and packed into the unit square; the
+/// See [`REPORT_CHART_FACES`].
+const REPORT_AREA_DISTORTION: f64 = 2.0;
+
+/// Mean-value texture atlas (Floater 2003: positive weights, so each chart
+/// maps one-to-one onto its circle; `mesh param`'s pipeline): the mesh
+/// cleaned into an oriented manifold when it is not one, each component
+/// split into charts ([`REPORT_CHART_FACES`]), each cut to a disk, flattened
+/// onto a circle, scaled to its area and packed into the unit square; the
 /// distortion of the whole and of each chart (eq. 2.8-2.11). `uv.obj` holds
 /// the (cleaned) mesh with one UV per face corner.
 fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     use super::param::{prepare, summarize, CleanMode};
     use mesh_param::{atlas, AtlasOptions, Method};
-    let options =
-        AtlasOptions { method: Method::Harmonic, max_chart_faces: Some(REPORT_CHART_FACES), ..AtlasOptions::default() };
+    let options = AtlasOptions {
+        method: Method::MeanValue,
+        max_chart_faces: Some(REPORT_CHART_FACES),
+        max_area_distortion: Some(REPORT_AREA_DISTORTION),
+        ..AtlasOptions::default()
+    };
     let start = Instant::now();
     let (cleaned, cleaning) = report.time("param_clean", || prepare(mesh.clone(), CleanMode::Auto))?;
-    let a = report.time("param_harmonic", || atlas(&cleaned, &options))?;
+    let a = report.time("param_mean_value", || atlas(&cleaned, &options))?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
     let uv_obj = report.file("uv.obj")?;
     let view = MeshView::new(&cleaned).with_corner_uvs(&a.corner_uvs);
@@ -372,6 +381,7 @@ fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         map.remove("input");
         map.insert("boundary".into(), json!("circle, chord length"));
         map.insert("max_chart_faces".into(), json!(REPORT_CHART_FACES));
+        map.insert("max_area_distortion".into(), json!(REPORT_AREA_DISTORTION));
     }
     Ok(section)
 }
