@@ -1,5 +1,5 @@
-//! Distortion of a parameterization, per face and in total (seed 2.4.2,
-//! eq. 2.8-2.11).
+//! Distortion of a parameterization, per face and in total (section 2.4.2
+//! of the "Digital Shape Processing" thesis chapter, eq. 2.8-2.11).
 //!
 //! On each face the map f from the parameter plane to the surface is affine;
 //! its Jacobian A = (f_u, f_v) (eq. 2.9) is a 3 x 2 matrix and, in an
@@ -32,10 +32,10 @@ pub struct FaceDistortion {
     pub angle_distortion: f64,
     /// sigma1 sigma2 = surface area / parameter area of the face.
     pub area_scale: f64,
-    /// The seed's torsion f_u . f_v (0 when the parameter directions stay
+    /// The chapter's torsion f_u . f_v (0 when the parameter directions stay
     /// orthogonal).
     pub torsion: f64,
-    /// The seed's non-uniform scaling |f_u|^2 - |f_v|^2.
+    /// The chapter's non-uniform scaling |f_u|^2 - |f_v|^2.
     pub nonuniform_scaling: f64,
     /// Area of the surface triangle.
     pub surface_area: f64,

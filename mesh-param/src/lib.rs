@@ -1,5 +1,8 @@
-//! Surface parameterization (seed section 2.4): flatten a disk-like triangle
-//! mesh onto the plane, and measure how much the map distorts.
+//! Surface parameterization (section 2.4 of the "Digital Shape Processing"
+//! thesis chapter): flatten a disk-like triangle mesh onto the plane, and
+//! measure how much the map distorts; cut any surface into a disk; build a
+//! texture atlas of any oriented manifold mesh ([`atlas()`]: charts packed
+//! into the unit square, one UV per face corner).
 //!
 //! | module | what it holds | seed / paper |
 //! |---|---|---|

@@ -1,5 +1,5 @@
 //! Edge weights of the fixed-boundary parameterizations: every method of the
-//! seed's section 2.4 solves the same system `sum_j w_ij (q_i - q_j) = 0`
+//! section 2.4 of the "Digital Shape Processing" thesis chapter solves the same system `sum_j w_ij (q_i - q_j) = 0`
 //! (eq. 2.13) with the boundary fixed, and differs only in its weights w_ij.
 //!
 //! | weights | w_ij | symmetric | reference |

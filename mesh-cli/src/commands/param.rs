@@ -1,11 +1,13 @@
-//! `mesh param`: flattens any mesh onto the unit square (seed section 2.4)
-//! as a texture atlas: the mesh is cleaned into an oriented manifold when it
-//! is not one, each connected component is cut into a disk and flattened
-//! with Tutte, mean-value, harmonic, authalic, intrinsic, LSCM or ARAP
-//! weights, the charts are scaled to their surface area and packed without
-//! overlap. Writes an OBJ with texture coordinates (one `vt` per vertex when
-//! no seam was cut, per corner otherwise) and prints the charts and their
-//! distortion (eq. 2.8-2.11).
+//! `mesh param`: flattens any mesh onto the unit square (section 2.4 of the
+//! "Digital Shape Processing" thesis chapter) as a texture atlas: the mesh is
+//! cleaned into an oriented manifold when it is not one, each connected
+//! component (or region of bounded size and distortion, `--max-chart-faces`,
+//! `--max-area-distortion`) is cut into a disk and flattened with Tutte,
+//! mean-value, harmonic, authalic, intrinsic, LSCM or ARAP weights, the
+//! charts are scaled to their surface area and packed without overlap.
+//! Writes an OBJ with texture coordinates (one `vt` per vertex when no vertex
+//! has two, per corner otherwise) and prints what cleaning did, the charts
+//! and their distortion (eq. 2.8-2.11).
 
 use std::path::PathBuf;
 use std::time::Instant;
