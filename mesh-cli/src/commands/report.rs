@@ -347,6 +347,9 @@ const REPORT_CHART_FACES: usize = 5000;
 /// See [`REPORT_CHART_FACES`].
 const REPORT_AREA_DISTORTION: f64 = 2.0;
 
+/// The report lists the charts of largest surface area only.
+const REPORT_LISTED_CHARTS: usize = 20;
+
 /// Mean-value texture atlas (Floater 2003: positive weights, so each chart
 /// maps one-to-one onto its circle; `mesh param`'s pipeline): the mesh
 /// cleaned into an oriented manifold when it is not one, each component
@@ -370,18 +373,22 @@ fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     let uv_obj = report.file("uv.obj")?;
     let view = MeshView::new(&cleaned).with_corner_uvs(&a.corner_uvs);
     mesh_io::write(&uv_obj, view, &mesh_io::WriteOptions::default())?;
-    let summary = super::param::Summary {
+    let mut summary = super::param::Summary {
         output: "uv.obj".to_owned(),
         vertices: mesh.vertex_count(),
         faces: mesh.face_count(),
         ..summarize(cleaning, &options.method, &a, true, time_ms)
     };
+    let listed = summary.chart_list.len().min(REPORT_LISTED_CHARTS);
+    let note = format!("the {listed} largest of {} charts; `mesh param --json` lists all", summary.chart_list.len());
+    summary.chart_list.truncate(REPORT_LISTED_CHARTS);
     let mut section = serde_json::to_value(&summary)?;
     if let Some(map) = section.as_object_mut() {
         map.remove("input");
         map.insert("boundary".into(), json!("circle, chord length"));
         map.insert("max_chart_faces".into(), json!(REPORT_CHART_FACES));
         map.insert("max_area_distortion".into(), json!(REPORT_AREA_DISTORTION));
+        map.insert("chart_list_note".into(), json!(note));
     }
     Ok(section)
 }
