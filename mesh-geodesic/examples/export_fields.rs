@@ -2,8 +2,10 @@
 //! line) for every method, so that external tools can compare them, e.g.
 //! `scripts/compare_exact.py` against exact polyhedral geodesics.
 //!
-//! `cargo run --release -p mesh-geodesic --example export_fields -- OUT_DIR [MESH.off|obj ...]`
-//! (without meshes: the unit icosphere level 5, a flat disk, a torus, a cube).
+//! `cargo run --release -p mesh-geodesic --example export_fields -- OUT_DIR [--no-exact] [MESH.off|obj|strip ...]`
+//! (without meshes: the unit icosphere level 5, a flat disk, a torus, a cube;
+//! `strip` is the flat 1500 x 2 strip of unit squares; `--no-exact` skips the
+//! exact method, for meshes too large for it).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -64,7 +66,7 @@ fn write_field(path: PathBuf, d: &[f64]) -> Res<()> {
     Ok(())
 }
 
-fn export(dir: &Path, name: &str, m: &TriMesh) -> Res<()> {
+fn export(dir: &Path, name: &str, m: &TriMesh, exact: bool) -> Res<()> {
     let mut f = std::io::BufWriter::new(std::fs::File::create(dir.join(format!("{name}.off")))?);
     writeln!(f, "OFF\n{} {} 0", m.vertex_count(), m.face_count())?;
     for p in m.positions() {
@@ -80,6 +82,9 @@ fn export(dir: &Path, name: &str, m: &TriMesh) -> Res<()> {
     }
     write_field(dir.join(format!("{name}.heat.txt")), &heat_distance(m, &s, &HeatOptions::default())?)?;
     write_field(dir.join(format!("{name}.dijkstra.txt")), &dijkstra(m, &s, &Default::default())?.distance)?;
+    if !exact {
+        return Ok(());
+    }
     let start = std::time::Instant::now();
     match exact_distance(m, &s, &Default::default()) {
         Ok(d) => {
@@ -95,16 +100,23 @@ fn main() -> Res<()> {
     let mut args = std::env::args().skip(1);
     let dir = PathBuf::from(args.next().ok_or("usage: export_fields OUT_DIR [MESH ...]")?);
     std::fs::create_dir_all(&dir)?;
-    let files: Vec<PathBuf> = args.map(PathBuf::from).collect();
-    if files.is_empty() {
-        export(&dir, "icosphere5", &shapes::icosphere(5)?)?;
-        export(&dir, "disk30", &shapes::disk(30, 3)?)?;
-        export(&dir, "torus", &shapes::torus(2.0, 0.5, 120, 30)?)?;
-        export(&dir, "cube20", &shapes::cube(20)?)?;
+    let mut args: Vec<String> = args.collect();
+    let exact = !args.iter().any(|a| a == "--no-exact");
+    args.retain(|a| a != "--no-exact");
+    if args.is_empty() {
+        export(&dir, "icosphere5", &shapes::icosphere(5)?, exact)?;
+        export(&dir, "disk30", &shapes::disk(30, 3)?, exact)?;
+        export(&dir, "torus", &shapes::torus(2.0, 0.5, 120, 30)?, exact)?;
+        export(&dir, "cube20", &shapes::cube(20)?, exact)?;
     }
-    for f in files {
+    for a in args {
+        if a == "strip" {
+            export(&dir, "strip1500x2", &shapes::grid(1500.0, 2.0, 1500, 2)?, exact)?;
+            continue;
+        }
+        let f = PathBuf::from(a);
         let name = f.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-        export(&dir, &name, &read(&f)?)?;
+        export(&dir, &name, &read(&f)?, exact)?;
     }
     Ok(())
 }

@@ -62,7 +62,9 @@ pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
 pub use error::{GeodesicError, Result};
 pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
-pub use heat::{heat_distance, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
+pub use heat::{
+    heat_distance, HeatBoundary, HeatDistance, HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus,
+};
 pub use sampling::{farthest_point_sampling, geodesic_voronoi, GeodesicVoronoi, SamplingMetric, SamplingOptions};
 pub use trace::{trace_path, GeodesicPath, SurfacePoint, TraceOptions};
 

@@ -194,6 +194,18 @@ impl FastMarching {
         (0..rank.len()).map(|v| internal[rank[v] as usize]).collect()
     }
 
+    /// Continues a distance field known on part of the mesh (finite values
+    /// in `known`, one per vertex) to the vertices marked `+infinity` that
+    /// the known region reaches (see [`March::run_from_known`]); known
+    /// values are kept. O(V log V) for the region reached.
+    pub(crate) fn extend(&self, known: &[f64]) -> Vec<f64> {
+        let order = &self.stencils.order;
+        let mut distance: Vec<f64> = order.iter().map(|&v| known[v as usize]).collect();
+        let mut labels = vec![u32::MAX; distance.len()];
+        March::new(distance.len()).run_from_known(self, &mut distance, &mut labels);
+        self.to_vertex_order(&distance)
+    }
+
     /// The mesh vertex at an internal index.
     pub(crate) fn vertex_at(&self, internal: usize) -> VertexId {
         VertexId(self.stencils.order[internal])
@@ -255,12 +267,7 @@ impl March {
         distance: &mut [f64],
         labels: &mut [u32],
     ) {
-        self.run = self.run.wrapping_add(1);
-        if self.run == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = u32::MAX);
-            self.run = 1;
-        }
-        let run = self.run;
+        self.next_run();
         self.heap.clear();
         for &(s, label) in seeds {
             let i = fmm.stencils.rank[s.idx()] as usize;
@@ -271,6 +278,46 @@ impl March {
                 self.heap.push(HeapEntry { distance: 0.0, vertex: i as u32 });
             }
         }
+        self.drain(fmm, max_distance, distance, labels);
+    }
+
+    /// Marches outwards from a field known on part of the mesh: vertices
+    /// with a finite value in `distance` keep it and are accepted at once
+    /// (with a straight front, kappa = 0, and label 0); the others get the
+    /// distance through them. O(V log V) for the region reached.
+    pub(crate) fn run_from_known(&mut self, fmm: &FastMarching, distance: &mut [f64], labels: &mut [u32]) {
+        self.next_run();
+        let run = self.run;
+        self.heap.clear();
+        for (i, d) in distance.iter().enumerate() {
+            if d.is_finite() {
+                self.stamp[i] = run;
+                self.kappa[i] = 0.0;
+                labels[i] = 0;
+            }
+        }
+        for v in 0..distance.len() {
+            let d = distance[v];
+            if d.is_finite() && fmm.stencils.of(v as u32).iter().any(|e| !distance[e.target as usize].is_finite()) {
+                self.relax(fmm, v as u32, d, distance, labels);
+            }
+        }
+        self.drain(fmm, f64::INFINITY, distance, labels);
+    }
+
+    /// A new run number (every vertex unaccepted).
+    fn next_run(&mut self) {
+        self.run = self.run.wrapping_add(1);
+        if self.run == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = u32::MAX);
+            self.run = 1;
+        }
+    }
+
+    /// Accepts vertices from the heap in increasing order until it is empty
+    /// or past `max_distance`.
+    fn drain(&mut self, fmm: &FastMarching, max_distance: f64, distance: &mut [f64], labels: &mut [u32]) {
+        let run = self.run;
         while let Some(HeapEntry { distance: d, vertex: v }) = self.heap.pop() {
             if self.stamp[v as usize] == run || d > distance[v as usize] {
                 continue; // already accepted, or a stale entry
@@ -279,18 +326,25 @@ impl March {
                 break;
             }
             self.stamp[v as usize] = run;
-            for e in fmm.stencils.of(v) {
-                let x = e.target as usize;
-                if self.stamp[x] == run {
-                    continue;
-                }
-                let (u, kappa, label) = self.candidate(fmm, e, v as usize, d, distance, labels);
-                if u < distance[x] {
-                    distance[x] = u;
-                    labels[x] = label;
-                    self.kappa[x] = kappa;
-                    self.heap.push(HeapEntry { distance: u, vertex: e.target });
-                }
+            self.relax(fmm, v, d, distance, labels);
+        }
+    }
+
+    /// Updates the unaccepted neighbours of the accepted vertex `v` (at `d`)
+    /// through every stencil of theirs that uses `v`.
+    #[inline]
+    fn relax(&mut self, fmm: &FastMarching, v: u32, d: f64, distance: &mut [f64], labels: &mut [u32]) {
+        for e in fmm.stencils.of(v) {
+            let x = e.target as usize;
+            if self.stamp[x] == self.run {
+                continue;
+            }
+            let (u, kappa, label) = self.candidate(fmm, e, v as usize, d, distance, labels);
+            if u < distance[x] {
+                distance[x] = u;
+                labels[x] = label;
+                self.kappa[x] = kappa;
+                self.heap.push(HeapEntry { distance: u, vertex: e.target });
             }
         }
     }

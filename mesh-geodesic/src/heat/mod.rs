@@ -20,15 +20,47 @@
 //! [`HeatGeodesics`] factors the three (two without boundary) matrices once,
 //! sharing one symbolic analysis; each query then costs two or three sparse
 //! triangular solve pairs plus O(F).
+//!
+//! # Far from the sources
+//!
+//! The heat flow decays like exp(-d / sqrt(t)), about 0.42 decimal orders
+//! of magnitude per mean edge length h with t = h^2. Two things used to cut
+//! the method off and leave a flat plateau beyond (on a 1500 x 2 strip,
+//! 72% of the vertices at about 427 instead of up to 1500):
+//! - normalizing X by |grad u| = sqrt(g . g), whose square underflows once u
+//!   is below about 1e-154 (370 h from a unit source); here the gradient is
+//!   divided by the triangle's largest heat value first, which leaves the
+//!   direction unchanged and is exact to rounding down to the denormals;
+//! - the unit source itself, which wastes half the exponent range: the heat
+//!   matrix is scaled to entries of order one (M / h^2 + m L) and the
+//!   sources to 2^1000 over the largest diagonal entry; since M + t L is an
+//!   M-matrix (non-negative intrinsic Delaunay weights), A^-1 >= 0 and
+//!   A^-1 M 1 = 1 bound every value by 2^1000, and its triangular solves add
+//!   only terms of one sign, so that each value is computed to full relative
+//!   precision however small. The flow is then resolved (at least
+//!   2^-1000) for about 1400 h.
+//!
+//! Beyond that, [`HeatFarField`] continues the field (Fast Marching by
+//! default, or restarted heat flows) or flags the vertices; negative heat
+//! values, possible where the Laplacian keeps negative weights, are treated
+//! the same way. [`HeatGeodesics::solve`] reports how each vertex was
+//! obtained ([`HeatStatus`]).
+
+mod assembly;
+mod face;
+mod far;
+mod status;
 
 use mesh_core::glam::DVec2;
 use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
 use mesh_core::solver::Cholesky;
-use mesh_core::sprs::CsMat;
-use mesh_core::{clean, TriMesh, VertexId, VertexKind};
+use mesh_core::{TriMesh, VertexId, VertexKind};
 
 use crate::error::{GeodesicError, Result};
 use crate::support::validate_sources;
+use assembly::{first_split_vertex, heat_ceiling, pin_pieces, shifted, unchanged_lengths, with_identity_rows};
+use face::{extrinsic_faces, FaceGradient};
+pub use status::{HeatDistance, HeatFarField, HeatStatus};
 
 /// Which Laplacian (and triangulation) the heat method works on.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -70,6 +102,9 @@ pub struct HeatOptions {
     pub boundary: HeatBoundary,
     /// Options of the intrinsic Delaunay triangulation.
     pub intrinsic: IntrinsicOptions,
+    /// What computes the distance where the heat flow is below what double
+    /// precision resolves. Default [`HeatFarField::FastMarching`].
+    pub far_field: HeatFarField,
 }
 
 impl Default for HeatOptions {
@@ -79,44 +114,8 @@ impl Default for HeatOptions {
             laplacian: HeatLaplacian::default(),
             boundary: HeatBoundary::default(),
             intrinsic: IntrinsicOptions::default(),
+            far_field: HeatFarField::default(),
         }
-    }
-}
-
-/// Below this relative area a triangle carries no gradient.
-const DEGENERATE: f64 = mesh_core::operators::laplacian::DEGENERATE_TOLERANCE;
-
-/// One triangle laid out in the plane: its vertices and the area-weighted
-/// gradients of its hat functions, `w_k = A grad(phi_k)` (half the edge
-/// opposite corner k turned by 90 degrees), or `None` when it has no area.
-#[derive(Debug, Clone, Copy)]
-struct FaceGradient {
-    vertices: [u32; 3],
-    w: Option<[DVec2; 3]>,
-}
-
-impl FaceGradient {
-    /// Lays out the triangle with side lengths `l[k]` (from corner k to k+1).
-    fn new(vertices: [u32; 3], l: [f64; 3]) -> Self {
-        let area = operators::intrinsic::heron_area(l[0], l[1], l[2]);
-        let longest = l[0].max(l[1]).max(l[2]);
-        if !(l[0] > 0.0 && area > 0.5 * DEGENERATE * longest * longest) {
-            return Self { vertices, w: None };
-        }
-        // Corner 0 at the origin, corner 1 on +x, corner 2 above.
-        let x2 = (l[0] * l[0] + l[2] * l[2] - l[1] * l[1]) / (2.0 * l[0]);
-        let p = [DVec2::ZERO, DVec2::new(l[0], 0.0), DVec2::new(x2, 2.0 * area / l[0])];
-        let w = [0, 1, 2].map(|k| 0.5 * (p[(k + 2) % 3] - p[(k + 1) % 3]).perp());
-        Self { vertices, w: Some(w) }
-    }
-
-    /// The unit vector -grad u / |grad u| (zero where grad u vanishes).
-    #[inline]
-    fn descent(&self, u: &[f64]) -> Option<DVec2> {
-        let w = self.w?;
-        let g: DVec2 = (0..3).map(|k| u[self.vertices[k] as usize] * w[k]).sum();
-        let len = g.length();
-        (len > 0.0 && len.is_finite()).then(|| -g / len)
     }
 }
 
@@ -125,7 +124,10 @@ impl FaceGradient {
 /// analysis and two numeric sparse Cholesky factorizations (three on meshes
 /// with boundary and [`HeatBoundary::Mean`]), plus the intrinsic Delaunay
 /// flips when chosen. [`HeatGeodesics::distance`] then answers any source
-/// set with two (three) pairs of triangular solves and O(F) work.
+/// set with two (three) pairs of triangular solves and O(F) work, plus the
+/// far field where the heat flow is not resolved (see the module
+/// documentation; none on meshes spanning less than about 1400 mean edge
+/// lengths from the sources).
 ///
 /// ```
 /// use mesh_core::{shapes, VertexId};
@@ -153,8 +155,15 @@ pub struct HeatGeodesics {
     /// The heat factor with the boundary rows fixed to zero.
     dirichlet: Option<Cholesky>,
     poisson: Cholesky,
+    /// The lumped mass in units of h^2 (the heat matrix is M / h^2 + m L).
+    mass: Vec<f64>,
+    /// The heat value the sources are scaled to (see [`HeatGeodesics::heat_flow`]).
+    ceiling: f64,
     /// One pinned vertex per connected piece of the Laplacian.
     pinned: Vec<u32>,
+    far_field: HeatFarField,
+    /// The mesh (without its connectivity), for the far field.
+    mesh: TriMesh,
     /// Connected component of each vertex (`u32::MAX` when isolated).
     component: Vec<u32>,
     component_count: usize,
@@ -218,7 +227,11 @@ impl HeatGeodesics {
         // Every matrix shares the pattern of L, so one symbolic analysis
         // serves all factorizations; removed rows keep explicit zeros.
         let isolated: Vec<bool> = (0..n).map(|v| conn.vertex_kind(VertexId::new(v)) == VertexKind::Isolated).collect();
-        let heat_matrix = shifted(&laplacian, time, &mass, &isolated);
+        // The heat matrix divided by h^2: entries of order one whatever the
+        // mesh's unit, so that the heat values' exponent range is known.
+        let mass: Vec<f64> = mass.iter().map(|m| m / (mean_edge * mean_edge)).collect();
+        let heat_matrix = shifted(&laplacian, options.time_factor, &mass, &isolated);
+        let ceiling = heat_ceiling(&heat_matrix);
         let heat = Cholesky::new(&heat_matrix)?;
         let boundary: Vec<bool> = (0..n).map(|v| conn.is_boundary_vertex(VertexId::new(v))).collect();
         let dirichlet = if options.boundary != HeatBoundary::Neumann && boundary.iter().any(|b| *b) {
@@ -245,7 +258,11 @@ impl HeatGeodesics {
             neumann,
             dirichlet,
             poisson,
+            mass,
+            ceiling,
             pinned,
+            far_field: options.far_field,
+            mesh: TriMesh::new(mesh.positions().to_vec(), mesh.faces().to_vec())?,
             component: components.vertex_component.clone(),
             component_count: components.count,
         })
@@ -264,9 +281,18 @@ impl HeatGeodesics {
     /// Approximate geodesic distance from the nearest of `sources` to every
     /// vertex; `+infinity` on components without a source (and on isolated
     /// vertices that are not sources). Sources are at 0; values are clamped
-    /// at 0 from below. Cost: two (three with a boundary) pairs of sparse
-    /// triangular solves and O(F).
+    /// at 0 from below. The same as [`HeatGeodesics::solve`] without the
+    /// per-vertex status. Cost: two (three with a boundary) pairs of sparse
+    /// triangular solves and O(F), plus the far field where there is one.
     pub fn distance(&self, sources: &[VertexId]) -> Result<Vec<f64>> {
+        Ok(self.solve(sources)?.distance)
+    }
+
+    /// The distance of [`HeatGeodesics::distance`] with the status of every
+    /// vertex: computed by the heat method, continued by the far field
+    /// beyond the heat flow's resolved range, left unresolved (only with
+    /// [`HeatFarField::None`]), or unreached.
+    pub fn solve(&self, sources: &[VertexId]) -> Result<HeatDistance> {
         let n = self.vertex_count;
         if sources.is_empty() {
             return Err(GeodesicError::NoSources);
@@ -275,18 +301,29 @@ impl HeatGeodesics {
             return Err(GeodesicError::SourceOutOfRange { vertex, vertex_count: n });
         }
         let u = self.heat_flow(sources)?;
-        let mut phi = self.divergence_of_descent(&u);
+        let mut resolved: Vec<bool> = u.iter().map(|x| *x >= far::RESOLVED).collect();
+        let mut directions: Vec<Option<DVec2>> = self.faces.iter().map(|f| f.resolved_descent(&u)).collect();
+        if self.far_field == HeatFarField::Restart {
+            self.restart(&u, &mut directions, &mut resolved)?;
+        }
+        let mut phi = self.divergence(&directions);
         self.poisson.solve_in_place(&mut phi)?;
-        Ok(self.shift_to_sources(phi, sources))
+        let phi = self.shift_to_sources(phi, sources);
+        self.finish(phi, &u, &resolved, sources)
     }
 
-    /// Step 1: the backward Euler heat flow (M + t L) u = delta from the
-    /// sources, averaged over the boundary conditions in use. In the
-    /// Dirichlet system a source on the boundary is a boundary value of 1.
+    /// Step 1: the backward Euler heat flow (M / h^2 + m L) u = delta from
+    /// the sources, averaged over the boundary conditions in use (in the
+    /// Dirichlet system a source on the boundary is a boundary value).
+    /// Every source gets delta_s = c min_s M_s with c the ceiling, so that
+    /// u <= max_s delta_s / M_s = c by the maximum principle of the
+    /// M-matrix (A^-1 >= 0, A^-1 M 1 = 1) and the values fill the exponent
+    /// range from about 1e300 down.
     fn heat_flow(&self, sources: &[VertexId]) -> Result<Vec<f64>> {
+        let smallest = sources.iter().map(|s| self.mass[s.idx()]).filter(|m| *m > 0.0).fold(1.0f64, f64::min);
         let mut delta = vec![0.0; self.vertex_count];
         for s in sources {
-            delta[s.idx()] = 1.0;
+            delta[s.idx()] = self.ceiling * smallest;
         }
         let factors: Vec<&Cholesky> = self.neumann.iter().chain(&self.dirichlet).collect();
         let mut u = vec![0.0; self.vertex_count];
@@ -301,13 +338,13 @@ impl HeatGeodesics {
     }
 
     /// Steps 2 and 3: the integrated divergence b_i = sum_f A_f grad(phi_i) . X_f
-    /// of the normalized descent field, zero at pinned vertices.
-    fn divergence_of_descent(&self, u: &[f64]) -> Vec<f64> {
+    /// of the unit field X, zero at pinned vertices.
+    fn divergence(&self, directions: &[Option<DVec2>]) -> Vec<f64> {
         let mut b = vec![0.0; self.vertex_count];
-        for face in &self.faces {
-            let (Some(w), Some(x)) = (face.w, face.descent(u)) else { continue };
+        for (face, x) in self.faces.iter().zip(directions) {
+            let (Some(w), Some(x)) = (face.w, x) else { continue };
             for k in 0..3 {
-                b[face.vertices[k] as usize] += w[k].dot(x);
+                b[face.vertices[k] as usize] += w[k].dot(*x);
             }
         }
         for &v in &self.pinned {
@@ -357,168 +394,40 @@ pub fn heat_distance(mesh: &TriMesh, sources: &[VertexId], options: &HeatOptions
     HeatGeodesics::new(mesh, options)?.distance(sources)
 }
 
-/// The mesh's own triangles laid out from their 3D edge lengths; triangles
-/// that [`mesh_core::clean::is_degenerate_triangle`] flags carry no gradient,
-/// as they carry no cotangent weight.
-fn extrinsic_faces(mesh: &TriMesh) -> Vec<FaceGradient> {
-    mesh.face_ids()
-        .map(|f| {
-            let tri = mesh.triangle(f);
-            let vertices = mesh.faces()[f.idx()];
-            if clean::is_degenerate_triangle(tri, DEGENERATE) {
-                return FaceGradient { vertices, w: None };
-            }
-            FaceGradient::new(vertices, [0, 1, 2].map(|k| tri[k].distance(tri[(k + 1) % 3])))
-        })
-        .collect()
-}
-
-/// `true` when the intrinsic half-edge lengths are the mesh's own (no
-/// mollification happened).
-fn unchanged_lengths(mesh: &TriMesh, lengths: &[f64]) -> bool {
-    let p = mesh.positions();
-    mesh.faces()
-        .iter()
-        .zip(lengths.chunks_exact(3))
-        .all(|(f, l)| (0..3).all(|k| p[f[k] as usize].distance(p[f[(k + 1) % 3] as usize]) == l[k]))
-}
-
-/// `diag(mass) + t L` with 1 on the diagonal of isolated vertices. Same
-/// pattern as `L`, whose diagonal entries are all stored.
-fn shifted(laplacian: &CsMat<f64>, t: f64, mass: &[f64], isolated: &[bool]) -> CsMat<f64> {
-    let mut a = laplacian.clone();
-    let indptr = a.indptr().to_proper().into_owned();
-    let indices = a.indices().to_vec();
-    let data = a.data_mut();
-    for row in 0..mass.len() {
-        for k in indptr[row]..indptr[row + 1] {
-            let value = t * data[k];
-            data[k] = if indices[k] == row {
-                if isolated[row] {
-                    1.0
-                } else {
-                    value + mass[row]
-                }
-            } else {
-                value
-            };
-        }
-    }
-    a
-}
-
-/// `a` with the rows and columns of `mask` replaced by the identity, the
-/// removed entries kept as explicit zeros (same pattern).
-fn with_identity_rows(a: &CsMat<f64>, mask: &[bool]) -> CsMat<f64> {
-    let mut out = a.clone();
-    let indptr = out.indptr().to_proper().into_owned();
-    let indices = out.indices().to_vec();
-    let data = out.data_mut();
-    for row in 0..mask.len() {
-        for k in indptr[row]..indptr[row + 1] {
-            let col = indices[k];
-            if mask[row] || mask[col] {
-                data[k] = if row == col { 1.0 } else { 0.0 };
-            }
-        }
-    }
-    out
-}
-
-/// Pins one vertex per connected piece of the triangles that carry a
-/// gradient (the null space of the Laplacian is one constant per piece).
-/// Returns the pinned vertices and the number of pieces.
-fn pin_pieces(n: usize, faces: &[FaceGradient]) -> (Vec<u32>, usize) {
-    let labels = piece_labels(n, faces);
-    let mut seen = vec![false; n];
-    let mut pinned = Vec::new();
-    for v in 0..n {
-        let root = labels[v];
-        if root != u32::MAX && !seen[root as usize] {
-            seen[root as usize] = true;
-            pinned.push(v as u32);
-        }
-    }
-    let pieces = pinned.len();
-    (pinned, pieces)
-}
-
-/// Union-find root of each vertex over the faces with a gradient;
-/// `u32::MAX` for vertices in none.
-fn piece_labels(n: usize, faces: &[FaceGradient]) -> Vec<u32> {
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    let mut used = vec![false; n];
-    fn find(parent: &mut [u32], mut i: u32) -> u32 {
-        while parent[i as usize] != i {
-            let p = parent[parent[i as usize] as usize];
-            parent[i as usize] = p;
-            i = p;
-        }
-        i
-    }
-    for f in faces.iter().filter(|f| f.w.is_some()) {
-        let [a, b, c] = f.vertices;
-        for v in [a, b, c] {
-            used[v as usize] = true;
-        }
-        for (x, y) in [(a, b), (a, c)] {
-            let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
-            if rx != ry {
-                parent[rx.max(ry) as usize] = rx.min(ry);
-            }
-        }
-    }
-    (0..n as u32).map(|v| if used[v as usize] { find(&mut parent, v) } else { u32::MAX }).collect()
-}
-
-/// A vertex whose Laplacian piece differs from its component's (for the
-/// error message).
-fn first_split_vertex(faces: &[FaceGradient], n: usize, component: &[u32]) -> VertexId {
-    let labels = piece_labels(n, faces);
-    let mut piece_of_component: Vec<u32> = vec![u32::MAX; n];
-    for v in 0..n {
-        let c = component[v];
-        if c == u32::MAX {
-            continue;
-        }
-        if labels[v] == u32::MAX {
-            return VertexId::new(v);
-        }
-        let slot = &mut piece_of_component[c as usize];
-        if *slot == u32::MAX {
-            *slot = labels[v];
-        } else if *slot != labels[v] {
-            return VertexId::new(v);
-        }
-    }
-    VertexId::INVALID
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use mesh_core::shapes;
 
     #[test]
-    fn face_gradients_reproduce_linear_functions() {
-        // A scalene triangle; u linear with gradient (2, -1) in the layout.
-        let l = [3.0, 2.5, 2.0];
-        let f = FaceGradient::new([0, 1, 2], l);
-        let w = f.w.unwrap();
-        let area = operators::intrinsic::heron_area(l[0], l[1], l[2]);
-        let x2 = (l[0] * l[0] + l[2] * l[2] - l[1] * l[1]) / (2.0 * l[0]);
-        let p = [DVec2::ZERO, DVec2::new(l[0], 0.0), DVec2::new(x2, 2.0 * area / l[0])];
-        let g = DVec2::new(2.0, -1.0);
-        let u: Vec<f64> = p.iter().map(|q| g.dot(*q) + 5.0).collect();
-        let grad: DVec2 = (0..3).map(|k| u[k] * w[k]).sum::<DVec2>() / area;
-        assert!((grad - g).length() < 1e-12);
-        // Hat gradients sum to zero.
-        assert!((w[0] + w[1] + w[2]).length() < 1e-12);
-        assert_eq!(f.descent(&u).map(|d| (d + g.normalize()).length() < 1e-12), Some(true));
+    fn heat_values_fill_the_exponent_range() {
+        // The 1500 x 2 strip (1341 mean edge lengths): from just below
+        // 2^1000 at the source, resolved all the way to the far end.
+        let mesh = shapes::grid(1500.0, 2.0, 1500, 2).unwrap();
+        let heat = HeatGeodesics::new(&mesh, &HeatOptions::default()).unwrap();
+        let u = heat.heat_flow(&[VertexId(0)]).unwrap();
+        let top = u.iter().copied().fold(0.0, f64::max);
+        assert!(top <= 2f64.powi(1000) && top > 2f64.powi(990), "{top:e}");
+        let bottom = u.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(bottom >= far::RESOLVED, "{bottom:e}");
+        // The decay: about 0.42 decimal orders per mean edge length.
+        let h = mesh_core::geometry::mean_edge_length(&mesh);
+        let per_h = (top.log10() - u[1500].log10()) / (1500.0 / h);
+        assert!((0.38..0.46).contains(&per_h), "{per_h}");
     }
 
     #[test]
-    fn zero_area_faces_carry_no_gradient() {
-        assert!(FaceGradient::new([0, 1, 2], [1.0, 1.0, 2.0]).w.is_none());
-        assert!(FaceGradient::new([0, 1, 2], [0.0, 1.0, 1.0]).w.is_none());
+    fn the_mesh_unit_does_not_matter() {
+        // With a unit source, a mesh in units of 1e60 started the heat flow
+        // near 1e-120 and lost it within a hundred edge lengths.
+        let mesh = shapes::grid(1500.0, 2.0, 1500, 2).unwrap();
+        for scale in [1e-60, 1.0, 1e60] {
+            let p: Vec<_> = mesh.positions().iter().map(|p| *p * scale).collect();
+            let scaled = TriMesh::new(p, mesh.faces().to_vec()).unwrap();
+            let d = heat_distance(&scaled, &[VertexId(0)], &HeatOptions::default()).unwrap();
+            for (x, p) in d.iter().zip(mesh.positions()) {
+                assert!((x / scale - p.length()).abs() < 0.5, "{scale}: {} vs {}", x / scale, p.length());
+            }
+        }
     }
 }
