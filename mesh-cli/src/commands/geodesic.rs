@@ -1,8 +1,13 @@
 //! `mesh geodesic`: geodesic distance from source vertices (seed section
 //! 2.6) by the heat method, Fast Marching (eq. 2.32-2.34), Dijkstra on the
-//! edges or exact polyhedral geodesics (window propagation), written as binary PLY with a per-vertex double `distance`
-//! (+infinity where no source is reachable), and optionally the path from a
-//! vertex back to the sources along -grad U (eq. 2.35) as an OBJ polyline.
+//! edges or exact polyhedral geodesics (window propagation), written as
+//! binary PLY with a per-vertex double `distance` (+infinity where no source
+//! is reachable), and optionally the path from a vertex back to the sources
+//! along -grad U (eq. 2.35) as an OBJ polyline. For the heat method the PLY
+//! also flags, per vertex, where the heat flow was below what double
+//! precision resolves: `far_field` (1 where the distance was continued
+//! there, by Fast Marching or restarted heat flows) and `unresolved` (1
+//! where it was not: `--far-field none`); `--json` counts both.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -10,7 +15,7 @@ use std::time::Instant;
 use mesh_core::VertexId;
 use mesh_geodesic::{
     dijkstra, exact_distance, trace_path, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, FmmUpdate,
-    HeatGeodesics, HeatLaplacian, HeatOptions, SurfacePoint, TraceOptions,
+    HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus, SurfacePoint, TraceOptions,
 };
 use mesh_io::MeshView;
 use serde::Serialize;
@@ -47,6 +52,12 @@ pub struct Args {
     /// (intrinsic, robust on bad triangles) or of the mesh (cotan).
     #[arg(long, default_value = "intrinsic")]
     laplacian: String,
+    /// Heat method: what computes the distance where the heat flow is below
+    /// what double precision resolves (about 1400 mean edge lengths from the
+    /// sources): fmm (Fast Marching from the resolved part), restart
+    /// (restarted heat flows) or none (flag the vertices `unresolved`).
+    #[arg(long, default_value = "fmm")]
+    far_field: String,
     /// Fast Marching local update: curved (default), point-source or
     /// plane-wave (eq. 2.34).
     #[arg(long, default_value = "curved")]
@@ -78,10 +89,26 @@ pub struct Summary {
     pub reached: usize,
     /// Vertices no source reaches (+infinity).
     pub unreachable: usize,
+    /// The heat method's far field, for `--method heat`.
+    pub heat: Option<HeatSummary>,
     /// The traced path, if asked for.
     pub path: Option<PathSummary>,
     /// Wall times in milliseconds.
     pub timings_ms: Timings,
+}
+
+/// Where the heat flow was not resolved (beyond about 1400 mean edge
+/// lengths from the sources, or negative).
+#[derive(Debug, Clone, Serialize)]
+pub struct HeatSummary {
+    /// The continuation chosen with `--far-field`.
+    pub far_field: String,
+    /// Vertices whose distance was continued (PLY field `far_field` = 1).
+    pub far_field_vertices: usize,
+    /// Vertices whose distance is not trustworthy (PLY field
+    /// `unresolved` = 1): only with `--far-field none`, or past the
+    /// restart limit.
+    pub unresolved_vertices: usize,
 }
 
 /// The traced path.
@@ -118,8 +145,23 @@ fn ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
 
-/// The distance field and the (precompute, solve) times.
-fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> CliResult<(Vec<f64>, f64, f64)> {
+/// A distance field, the heat method's per-vertex status, and the
+/// (precompute, solve) times in milliseconds.
+struct Field {
+    distance: Vec<f64>,
+    status: Option<Vec<HeatStatus>>,
+    precompute: f64,
+    solve: f64,
+}
+
+impl Field {
+    fn plain(distance: Vec<f64>, precompute: f64, solve: f64) -> Self {
+        Self { distance, status: None, precompute, solve }
+    }
+}
+
+/// The distance field of the chosen method.
+fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> CliResult<Field> {
     match args.method.as_str() {
         "heat" => {
             let laplacian = match args.laplacian.as_str() {
@@ -127,13 +169,14 @@ fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> Cli
                 "cotan" => HeatLaplacian::Cotan,
                 other => return Err(format!("unknown --laplacian `{other}`; known: intrinsic, cotan").into()),
             };
-            let opts = HeatOptions { time_factor: args.time_factor, laplacian, ..Default::default() };
+            let far_field: HeatFarField = args.far_field.parse()?;
+            let opts = HeatOptions { time_factor: args.time_factor, laplacian, far_field, ..Default::default() };
             let start = Instant::now();
             let heat = HeatGeodesics::new(mesh, &opts)?;
-            let pre = ms(start);
+            let precompute = ms(start);
             let start = Instant::now();
-            let d = heat.distance(sources)?;
-            Ok((d, pre, ms(start)))
+            let d = heat.solve(sources)?;
+            Ok(Field { distance: d.distance, status: Some(d.status), precompute, solve: ms(start) })
         }
         "fmm" => {
             let update = match args.fmm_update.as_str() {
@@ -151,17 +194,17 @@ fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> Cli
             let pre = ms(start);
             let start = Instant::now();
             let d = fmm.distance(sources)?;
-            Ok((d, pre, ms(start)))
+            Ok(Field::plain(d, pre, ms(start)))
         }
         "dijkstra" => {
             let start = Instant::now();
             let d = dijkstra(mesh, sources, &DijkstraOptions::default())?.distance;
-            Ok((d, 0.0, ms(start)))
+            Ok(Field::plain(d, 0.0, ms(start)))
         }
         "exact" => {
             let start = Instant::now();
             let d = exact_distance(mesh, sources, &ExactOptions::default())?;
-            Ok((d, 0.0, ms(start)))
+            Ok(Field::plain(d, 0.0, ms(start)))
         }
         other => Err(format!("unknown --method `{other}`; known: heat, fmm, dijkstra, exact").into()),
     }
@@ -180,18 +223,31 @@ pub fn run(args: &Args) -> CliResult<()> {
     if let Some(&bad) = args.source.iter().find(|&&s| s as usize >= n) {
         return Err(format!("--source {bad} is not a vertex (the mesh has {n})").into());
     }
-    let (d, precompute, solve) = distance(args, mesh, &sources)?;
+    let field = distance(args, mesh, &sources)?;
+    let d = &field.distance;
 
     ensure_parent(&args.out)?;
-    let write = binary_ply();
-    mesh_io::write(&args.out, MeshView::new(mesh).with_scalar("distance", &d), &write)?;
+    let mut view = MeshView::new(mesh).with_scalar("distance", d);
+    let flag = |which: HeatStatus| -> Vec<f64> {
+        field.status.iter().flatten().map(|s| if *s == which { 1.0 } else { 0.0 }).collect()
+    };
+    let (far_field, unresolved) = (flag(HeatStatus::FarField), flag(HeatStatus::Unresolved));
+    if field.status.is_some() {
+        view = view.with_scalar("far_field", &far_field).with_scalar("unresolved", &unresolved);
+    }
+    mesh_io::write(&args.out, view, &binary_ply())?;
+    let heat = field.status.as_ref().map(|_| HeatSummary {
+        far_field: args.far_field.clone(),
+        far_field_vertices: far_field.iter().filter(|x| **x > 0.0).count(),
+        unresolved_vertices: unresolved.iter().filter(|x| **x > 0.0).count(),
+    });
 
     let (path, trace_ms) = match (args.path_from, &args.path_out) {
         (Some(from), Some(out)) => {
             let start_point = SurfacePoint::at_vertex(mesh, VertexId(from))
                 .ok_or_else(|| format!("--path-from {from} is not a vertex of any face"))?;
             let start = Instant::now();
-            let path = trace_path(mesh, &d, &sources, start_point, &TraceOptions::default())?;
+            let path = trace_path(mesh, d, &sources, start_point, &TraceOptions::default())?;
             let t = ms(start);
             ensure_parent(out)?;
             mesh_io::write_polylines(out, &[&path.positions])?;
@@ -220,8 +276,9 @@ pub fn run(args: &Args) -> CliResult<()> {
         max_distance: (reached > 0).then_some(max),
         reached,
         unreachable: n - reached,
+        heat,
         path,
-        timings_ms: Timings { precompute, solve, trace: trace_ms },
+        timings_ms: Timings { precompute: field.precompute, solve: field.solve, trace: trace_ms },
     };
     if args.json {
         return print_json(&summary);
@@ -238,6 +295,12 @@ fn print_text(s: &Summary) {
         None => println!("  max distance       n/a"),
     }
     println!("  reached            {} vertices, {} unreachable (+inf)", s.reached, s.unreachable);
+    if let Some(h) = &s.heat {
+        println!(
+            "  heat far field     {}: {} vertices continued, {} unresolved",
+            h.far_field, h.far_field_vertices, h.unresolved_vertices
+        );
+    }
     if let Some(p) = &s.path {
         println!(
             "  path               v{} -> v{}: length {:.6} (field {}), {} points, {} edge fallback segments",
@@ -333,10 +396,35 @@ mod tests {
             &["--source", "0", "--laplacian", "nope"],
             &["--source", "0", "--method", "fmm", "--fmm-update", "nope"],
             &["--source", "0", "--time-factor=-1"],
+            &["--source", "0", "--far-field", "nope"],
         ] {
             let mut v = vec!["--shape", "icosphere", "--res", "1", "--out", out];
             v.extend_from_slice(bad);
             assert!(run(&args(&v)).is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn a_long_strip_has_no_plateau_and_says_where_it_continued() {
+        // 6000 x 2 unit squares, source at a corner: beyond about 1400 mean
+        // edge lengths the heat flow is not resolved.
+        let dir = tempfile::tempdir().unwrap();
+        let input = dir.path().join("strip.ply");
+        let strip = mesh_core::shapes::grid(6000.0, 2.0, 6000, 2).unwrap();
+        mesh_io::write(&input, MeshView::new(&strip), &binary_ply()).unwrap();
+        let out = dir.path().join("d.ply");
+        for far_field in ["fmm", "restart", "none"] {
+            let (input, out) = (input.to_str().unwrap(), out.to_str().unwrap());
+            run(&args(&[input, "--source", "0", "--far-field", far_field, "--out", out])).unwrap();
+            let data = mesh_io::read(out).unwrap();
+            let count = |name: &str| data.scalar(name).unwrap().iter().filter(|x| **x == 1.0).count();
+            let d = data.scalar("distance").unwrap();
+            let worst = d.iter().zip(strip.positions()).map(|(x, p)| (x - p.length()).abs()).fold(0.0, f64::max);
+            match far_field {
+                "fmm" => assert!(count("far_field") > 9000 && count("unresolved") == 0 && worst < 1.0, "{worst}"),
+                "restart" => assert!(count("far_field") == 0 && count("unresolved") == 0 && worst < 1.0, "{worst}"),
+                _ => assert!(count("far_field") == 0 && count("unresolved") > 9000 && worst > 1000.0),
+            }
         }
     }
 

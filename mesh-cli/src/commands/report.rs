@@ -304,14 +304,17 @@ fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
 /// Marching for comparison (eq. 2.32-2.34), and the geodesic traced back from
 /// the farthest vertex (eq. 2.35).
 fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
-    use mesh_geodesic::{fmm_distance, trace_path, FmmOptions, HeatGeodesics, SurfacePoint, TraceOptions};
+    use mesh_geodesic::{fmm_distance, trace_path, FmmOptions, HeatGeodesics, HeatStatus, SurfacePoint, TraceOptions};
     let conn = mesh.connectivity();
     let source = mesh
         .vertex_ids()
         .find(|&v| conn.vertex_kind(v) != VertexKind::Isolated)
         .ok_or("the mesh has no referenced vertex")?;
     let heat = report.time("heat_precompute", || HeatGeodesics::new(mesh, &Default::default()))?;
-    let d = report.time("heat_solve", || heat.distance(&[source]))?;
+    let solved = report.time("heat_solve", || heat.solve(&[source]))?;
+    let far_field = solved.count(HeatStatus::FarField);
+    let unresolved = solved.count(HeatStatus::Unresolved);
+    let d = solved.distance;
     let fmm = report.time("fmm", || fmm_distance(mesh, &[source], &FmmOptions::default()))?;
     let far = (0..d.len()).filter(|&i| d[i].is_finite()).max_by(|&a, &b| d[a].total_cmp(&d[b]));
     let path = match far.and_then(|v| SurfacePoint::at_vertex(mesh, VertexId::new(v))) {
@@ -329,6 +332,9 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         "method": "heat",
         "max_distance_heat": max(&d),
         "max_distance_fmm": max(&fmm),
+        "heat_far_field": heat.far_field().name(),
+        "far_field_vertices": far_field,
+        "unresolved_vertices": unresolved,
         "reached": reached,
         "unreachable": d.len() - reached,
         "path": path,

@@ -273,6 +273,11 @@ impl HeatGeodesics {
         self.time
     }
 
+    /// The continuation used where the heat flow is not resolved.
+    pub fn far_field(&self) -> HeatFarField {
+        self.far_field
+    }
+
     /// Number of vertices of the mesh this was built for.
     pub fn vertex_count(&self) -> usize {
         self.vertex_count

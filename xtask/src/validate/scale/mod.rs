@@ -11,6 +11,7 @@
 //! built in memory and never written into the repository.
 
 mod curvature;
+mod heat;
 mod param;
 mod spectral;
 
@@ -109,7 +110,8 @@ fn dragon_path() -> Res<PathBuf> {
 type Part = (&'static str, fn(&mut Validator, &ScaleMeshes));
 
 /// Every part, in the order they run.
-const PARTS: &[Part] = &[("curvature", curvature::run), ("spectral", spectral::run), ("param", param::run)];
+const PARTS: &[Part] =
+    &[("curvature", curvature::run), ("spectral", spectral::run), ("param", param::run), ("heat", heat::run)];
 
 /// Runs every scale check.
 pub fn run(v: &mut Validator) {
