@@ -7,7 +7,7 @@
 //! | [`dijkstra`](mod@dijkstra) | multi-source Dijkstra on the edge graph, shortest-path tree, edge paths | 2.6 (upper bound) |
 //! | [`exact`] | exact polyhedral distances by window propagation with the vertex-distance filter | Mitchell, Mount and Papadimitriou 1987; Surazhsky et al. 2005; Xin and Wang 2009 |
 //! | [`fmm`] | Fast Marching ([`FastMarching`]): eq. 2.33-2.34 plane-wave update, point-source and curved-front updates, obtuse triangles split by unfolding, per-vertex weights P | eq. 2.32-2.34, Kimmel and Sethian 1998 |
-//! | [`heat`] | the heat method ([`HeatGeodesics`]), prefactored, cotangent or intrinsic Delaunay Laplacian, boundary conditions | Crane, Weischedel and Wardetzky 2013 |
+//! | [`heat`] | the heat method ([`HeatGeodesics`]), prefactored, cotangent or intrinsic Delaunay Laplacian, boundary conditions; the whole exponent range of the heat flow, and a far field ([`HeatFarField`]) with per-vertex status ([`HeatStatus`]) beyond it | Crane, Weischedel and Wardetzky 2013 |
 //! | [`trace`] | paths along dC/dt = -grad U from any surface point back to the sources | eq. 2.35 |
 //! | [`sampling`] | farthest-point sampling and geodesic Voronoi regions | 2.6 |
 //!

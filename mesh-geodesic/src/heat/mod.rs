@@ -307,11 +307,13 @@ impl HeatGeodesics {
         }
         let u = self.heat_flow(sources)?;
         let mut resolved: Vec<bool> = u.iter().map(|x| *x >= far::RESOLVED).collect();
-        let mut directions: Vec<Option<DVec2>> = self.faces.iter().map(|f| f.resolved_descent(&u)).collect();
-        if self.far_field == HeatFarField::Restart {
+        let mut phi = if self.far_field == HeatFarField::Restart {
+            let mut directions: Vec<Option<DVec2>> = self.faces.iter().map(|f| f.resolved_descent(&u)).collect();
             self.restart(&u, &mut directions, &mut resolved)?;
-        }
-        let mut phi = self.divergence(&directions);
+            self.divergence(|f, _| directions[f])
+        } else {
+            self.divergence(|_, face| face.resolved_descent(&u))
+        };
         self.poisson.solve_in_place(&mut phi)?;
         let phi = self.shift_to_sources(phi, sources);
         self.finish(phi, &u, &resolved, sources)
@@ -343,13 +345,14 @@ impl HeatGeodesics {
     }
 
     /// Steps 2 and 3: the integrated divergence b_i = sum_f A_f grad(phi_i) . X_f
-    /// of the unit field X, zero at pinned vertices.
-    fn divergence(&self, directions: &[Option<DVec2>]) -> Vec<f64> {
+    /// of the unit field X (`direction(f, face)`, none where unresolved),
+    /// zero at pinned vertices. O(F).
+    fn divergence(&self, direction: impl Fn(usize, &FaceGradient) -> Option<DVec2>) -> Vec<f64> {
         let mut b = vec![0.0; self.vertex_count];
-        for (face, x) in self.faces.iter().zip(directions) {
-            let (Some(w), Some(x)) = (face.w, x) else { continue };
+        for (f, face) in self.faces.iter().enumerate() {
+            let (Some(w), Some(x)) = (face.w, direction(f, face)) else { continue };
             for k in 0..3 {
-                b[face.vertices[k] as usize] += w[k].dot(*x);
+                b[face.vertices[k] as usize] += w[k].dot(x);
             }
         }
         for &v in &self.pinned {
