@@ -130,3 +130,33 @@ fn far_field_names_round_trip() {
     }
     assert!("nope".parse::<HeatFarField>().is_err());
 }
+
+/// Two 3000 x 2 strips (separate components) and an isolated vertex: the
+/// far field stays on the components that hold a source.
+#[test]
+fn far_field_stays_on_the_source_components() {
+    let strip = shapes::grid(3000.0, 2.0, 3000, 2).unwrap();
+    let n = strip.vertex_count();
+    let mut positions = strip.positions().to_vec();
+    positions.extend(strip.positions().iter().map(|p| *p + DVec3::new(0.0, 10.0, 0.0)));
+    positions.push(DVec3::new(-5.0, 0.0, 0.0));
+    let mut faces = strip.faces().to_vec();
+    faces.extend(strip.faces().iter().map(|f| f.map(|v| v + n as u32)));
+    let mesh = TriMesh::new(positions, faces).unwrap();
+    let truth: Vec<f64> = strip.positions().iter().map(|p| p.length()).collect();
+    for far_field in HeatFarField::ALL {
+        let heat = HeatGeodesics::new(&mesh, &HeatOptions { far_field, ..Default::default() }).unwrap();
+        let one = heat.solve(&[VertexId(0)]).unwrap();
+        assert!(one.distance[n..].iter().all(|x| *x == f64::INFINITY), "{far_field}");
+        assert!(one.status[n..].iter().all(|s| *s == HeatStatus::Unreached), "{far_field}");
+        assert_eq!(one.count(HeatStatus::Unreached), n + 1, "{far_field}");
+        let both = heat.solve(&[VertexId(0), VertexId(n as u32)]).unwrap();
+        assert!(both.distance[2 * n].is_infinite());
+        if far_field != HeatFarField::None {
+            for part in [&one.distance[..n], &both.distance[..n], &both.distance[n..2 * n]] {
+                let (max, median, _) = relative_errors(part, &truth);
+                assert!(max <= 0.02 && median <= 0.005, "{far_field}: {max} {median}");
+            }
+        }
+    }
+}

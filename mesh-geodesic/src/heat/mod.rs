@@ -33,17 +33,17 @@
 //!   direction unchanged and is exact to rounding down to the denormals;
 //! - the unit source itself, which wastes half the exponent range: the heat
 //!   matrix is scaled to entries of order one (M / h^2 + m L) and the
-//!   sources to 2^1000 over the largest diagonal entry; since M + t L is an
-//!   M-matrix (non-negative intrinsic Delaunay weights), A^-1 >= 0 and
-//!   A^-1 M 1 = 1 bound every value by 2^1000, and its triangular solves add
-//!   only terms of one sign, so that each value is computed to full relative
-//!   precision however small. The flow is then resolved (at least
-//!   2^-1000) for about 1400 h.
+//!   sources to 2^1000 over the square root of its largest diagonal entry;
+//!   where M + t L is an M-matrix (non-negative weights, which the intrinsic
+//!   Delaunay triangulation guarantees except on boundary edges opposite
+//!   obtuse angles), A^-1 >= 0 and A^-1 M 1 = 1 bound every value by
+//!   2^1000, and the triangular solves add only terms of one sign, so that
+//!   each value is computed to full relative precision however small. The
+//!   flow is then resolved (at least 2^-1000) for about 1400 h.
 //!
 //! Beyond that, [`HeatFarField`] continues the field (Fast Marching by
 //! default, or restarted heat flows) or flags the vertices; negative heat
-//! values, possible where the Laplacian keeps negative weights, are treated
-//! the same way. [`HeatGeodesics::solve`] reports how each vertex was
+//! values, possible next to negative weights, are treated the same way. [`HeatGeodesics::solve`] reports how each vertex was
 //! obtained ([`HeatStatus`]).
 
 mod assembly;

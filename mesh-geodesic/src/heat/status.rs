@@ -76,8 +76,9 @@ pub enum HeatStatus {
     Heat,
     /// By Fast Marching beyond the heat flow's resolved range
     /// ([`HeatFarField::FastMarching`]), or where the heat flow is negative
-    /// (a Laplacian with negative weights, e.g. across inconsistently
-    /// oriented faces that no flip can fix).
+    /// (next to negative weights of the Laplacian, which the intrinsic
+    /// Delaunay triangulation keeps on boundary edges opposite obtuse
+    /// angles).
     FarField,
     /// Not trustworthy: beyond the heat flow's resolved range and not
     /// continued ([`HeatFarField::None`]).
