@@ -4,9 +4,9 @@
 //! Backward Euler heat flow from a point decays like exp(-d / sqrt(t)) with
 //! the distance d (the screened-Poisson Green's function; Varadhan 1967 for
 //! the heat kernel). With t = h^2 it loses about 0.42 decimal orders of
-//! magnitude per mean edge length h: the paper's unit source spends the
-//! range of a double after about 730 h, and squaring the gradient to
-//! normalize it after about 370 h, where a plateau began. Scaled to start
+//! magnitude per mean edge length h: a unit source on a mesh of unit edges
+//! spends the range of a double after about 770 h, and squaring the
+//! gradient to normalize it, after about 370 h, where a plateau began. Scaled to start
 //! at 2^1000 ([`super::HeatGeodesics`]) and normalized without squaring,
 //! the flow is resolved, down to [`RESOLVED`] = 2^-1000, for about 1400 h.
 //! Beyond that [`HeatFarField`] chooses the continuation.
@@ -100,8 +100,11 @@ impl HeatGeodesics {
             status[s.idx()] = HeatStatus::Heat;
         }
         if self.far_field == HeatFarField::FastMarching {
-            let far: Vec<bool> =
+            let mut far: Vec<bool> =
                 (0..phi.len()).map(|v| status[v] != HeatStatus::Unreached && !(u[v] >= TRUSTED)).collect();
+            for s in sources {
+                far[s.idx()] = false;
+            }
             if far.contains(&true) {
                 let marched = self.march_far_field(&phi, &far)?;
                 for v in 0..phi.len() {
