@@ -145,14 +145,18 @@ fn report_writes_viewer_files() {
     }
     assert!(out.join("report.json").is_file());
     // A clean cube needs no warning about its input; its sharp edges have no
-    // finite curvature, and the curvature section says where it flagged them.
-    let warnings = v["warnings"].as_array().unwrap();
+    // finite curvature, and the curvature section says where it flagged them;
+    // on 98 vertices the heat distance is a few percent off the exact one,
+    // and the geodesic section says so.
+    let warnings: Vec<&str> = v["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap()).collect();
     assert!(
-        warnings
-            .iter()
-            .all(|w| w.as_str().unwrap().starts_with("curvature:") && w.as_str().unwrap().contains("unresolved")),
+        warnings.iter().all(|w| (w.starts_with("curvature:") && w.contains("unresolved"))
+            || w.starts_with("geodesic: the heat distance differs from the exact")),
         "{warnings:?}"
     );
+    let g = &v["sections"]["geodesic"];
+    assert_eq!(g["reference"], "exact polyhedral distance");
+    assert!(g["heat_vs_reference_max_relative"].as_f64().unwrap() < 0.1, "{g}");
     let flagged = v["sections"]["curvature"]["flagged"]["by_reason"]["unresolved"].as_u64().unwrap();
     assert!(flagged > 0 && flagged < 6 * 4 * 4 + 2, "{flagged}");
 }

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use mesh_core::glam::DVec3;
-use mesh_core::{geometry, operators, TriMesh, VertexId, VertexKind};
+use mesh_core::{geometry, operators, TriMesh, VertexId};
 use mesh_io::MeshView;
 use serde_json::{json, Map, Value};
 
@@ -131,7 +131,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     let mesh = &data.mesh;
     let info = report.time("info", || Info::of(mesh));
     report.sections.insert("info".into(), serde_json::to_value(&info)?);
-    input_warnings(&mut report, &info, &data.report);
+    input_warnings(&mut report, mesh, &info, &data.report);
 
     let operators = operators_section(&mut report, mesh, args.feature_angle);
     report.section("operators", operators);
@@ -172,14 +172,23 @@ pub fn run(args: &Args) -> CliResult<()> {
 }
 
 /// What the input's defects mean for the analyses that follow.
-fn input_warnings(report: &mut Report, info: &Info, read: &mesh_io::ReadReport) {
+fn input_warnings(report: &mut Report, mesh: &TriMesh, info: &Info, read: &mesh_io::ReadReport) {
     if !read.is_clean() {
         report.warn(format!("reading the file changed it: {read}"));
     }
     if info.coincident_vertices > 0 {
+        let welded = mesh_core::clean::weld_vertices(mesh.positions(), mesh.faces(), 0.0).ok().map(|(p, mut f, _)| {
+            f.retain(|[a, b, c]| a != b && b != c && a != c);
+            mesh_core::connectivity::Connectivity::new(p.len(), &f).components().count
+        });
+        let joined = match welded {
+            Some(after) if after < info.components => {
+                format!("; welding them (`mesh clean`) joins the {} components into {after}", info.components)
+            }
+            _ => " (`mesh clean` welds them)".to_owned(),
+        };
         report.warn(format!(
-            "{} vertices sit exactly on another vertex without sharing its index: the surface is cut there \
-             (`mesh clean` welds them)",
+            "{} vertices sit exactly on another vertex without sharing its index: the surface is cut there{joined}",
             info.coincident_vertices
         ));
     }
@@ -189,7 +198,8 @@ fn input_warnings(report: &mut Report, info: &Info, read: &mesh_io::ReadReport) 
     if !info.manifold {
         report.warn(format!(
             "not an oriented manifold ({} non-manifold edges, {} non-manifold vertices, {} inconsistent edges): \
-             sections that need one run on a repaired copy (`mesh clean --manifold`)",
+             the parameterization runs on a repaired copy (`mesh clean --manifold`), curvature flags the \
+             vertices concerned",
             info.non_manifold_edges, info.non_manifold_vertices, info.inconsistent_edges
         ));
     }
@@ -219,6 +229,7 @@ fn operators_section(report: &mut Report, mesh: &TriMesh, feature_angle: f64) ->
         features.iter().map(|&e| conn.edge_vertices(e).map(|v: VertexId| mesh.position(v))).collect();
     mesh_io::write_polylines(report.file("feature_edges.obj")?, &lines)?;
     Ok(json!({
+        "ran_on": "the mesh as read",
         "laplacian_nonzeros": laplacian.nnz(),
         "negative_cotan_weights": negative,
         "total_voronoi_area": mass.iter().sum::<f64>(),
@@ -304,12 +315,15 @@ fn curvature_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
 /// Marching for comparison (eq. 2.32-2.34), and the geodesic traced back from
 /// the farthest vertex (eq. 2.35).
 fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
-    use mesh_geodesic::{fmm_distance, trace_path, FmmOptions, HeatGeodesics, HeatStatus, SurfacePoint, TraceOptions};
-    let conn = mesh.connectivity();
-    let source = mesh
-        .vertex_ids()
-        .find(|&v| conn.vertex_kind(v) != VertexKind::Isolated)
-        .ok_or("the mesh has no referenced vertex")?;
+    use mesh_geodesic::{
+        exact_distance, fmm_distance, trace_path, ExactOptions, FmmOptions, HeatGeodesics, HeatStatus, SurfacePoint,
+        TraceOptions,
+    };
+    let components = mesh.connectivity().components();
+    let largest = components.largest().ok_or("the mesh has no faces")?;
+    let source = VertexId::new(
+        components.vertex_component.iter().position(|&c| c as usize == largest).ok_or("the mesh has no faces")?,
+    );
     let heat = report.time("heat_precompute", || HeatGeodesics::new(mesh, &Default::default()))?;
     let solved = report.time("heat_solve", || heat.solve(&[source]))?;
     let far_field = solved.count(HeatStatus::FarField);
@@ -327,11 +341,47 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     };
     let reached = d.iter().filter(|x| x.is_finite()).count();
     let max = |v: &[f64]| finite(v.iter().copied().filter(|x| x.is_finite()).fold(f64::NAN, f64::max));
+    // Exact polyhedral distances are the reference where they are cheap.
+    let exact = (mesh.vertex_count() <= EXACT_REFERENCE_VERTICES)
+        .then(|| {
+            let options = ExactOptions { max_windows: EXACT_REFERENCE_WINDOWS };
+            report.time("exact", || exact_distance(mesh, &[source], &options)).ok()
+        })
+        .flatten();
+    let (reference_name, reference) = match &exact {
+        Some(e) => ("exact polyhedral distance", e),
+        None => ("Fast Marching", &fmm),
+    };
+    let agreement = relative_difference(&d, reference);
+    if let Some((max_rel, median_rel)) = agreement {
+        if max_rel > HEAT_MAX_ERROR || median_rel > HEAT_MEDIAN_ERROR {
+            report.warn(format!(
+                "geodesic: the heat distance differs from the {reference_name} by up to {:.2}% (median {:.2}%) of \
+                 the largest distance",
+                100.0 * max_rel,
+                100.0 * median_rel
+            ));
+        }
+    }
+    if unresolved > 0 {
+        report.warn(format!("geodesic: {unresolved} vertices unresolved by the heat flow (`unresolved` in mesh.ply)"));
+    }
     let section = json!({
+        "ran_on": format!(
+            "the source's component, the largest ({reached} of {} vertices; the distance is infinite on the \
+             other {} components and on unreferenced vertices)",
+            mesh.vertex_count(),
+            components.count - 1
+        ),
         "source": source.0,
         "method": "heat",
+        "laplacian": "intrinsic Delaunay (mollified)",
         "max_distance_heat": max(&d),
         "max_distance_fmm": max(&fmm),
+        "reference": reference_name,
+        "heat_vs_reference_max_relative": agreement.map(|a| a.0),
+        "heat_vs_reference_median_relative": agreement.map(|a| a.1),
+        "fmm_vs_exact_max_relative": exact.as_ref().and_then(|e| relative_difference(&fmm, e)).map(|a| a.0),
         "heat_far_field": heat.far_field().name(),
         "far_field_vertices": far_field,
         "unresolved_vertices": unresolved,
@@ -341,6 +391,34 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     });
     report.field(mesh, "distance", d)?;
     Ok(section)
+}
+
+/// The accuracy the heat method is held to (largest and median error
+/// relative to the largest distance); a miss is a warning.
+const HEAT_MAX_ERROR: f64 = 0.02;
+/// See [`HEAT_MAX_ERROR`].
+const HEAT_MEDIAN_ERROR: f64 = 0.005;
+/// Meshes up to this size get exact polyhedral distances as the reference.
+const EXACT_REFERENCE_VERTICES: usize = 20_000;
+/// The work bound of that exact computation (Fast Marching is the reference
+/// when it is reached).
+const EXACT_REFERENCE_WINDOWS: usize = 4_000_000;
+
+/// Largest and median |field - reference| over the vertices both reach,
+/// relative to the largest reference distance; `None` when nothing is reached.
+fn relative_difference(field: &[f64], reference: &[f64]) -> Option<(f64, f64)> {
+    let scale = reference.iter().copied().filter(|x| x.is_finite()).fold(0.0, f64::max);
+    let mut diff: Vec<f64> = field
+        .iter()
+        .zip(reference)
+        .filter(|(h, f)| h.is_finite() && f.is_finite())
+        .map(|(h, f)| (h - f).abs() / scale)
+        .collect();
+    if diff.is_empty() || !(scale > 0.0) {
+        return None;
+    }
+    diff.sort_by(f64::total_cmp);
+    Some((diff[diff.len() - 1], diff[diff.len() / 2]))
 }
 
 /// The report's atlas: charts of at most about this many faces, split
@@ -388,9 +466,15 @@ fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     let listed = summary.chart_list.len().min(REPORT_LISTED_CHARTS);
     let note = format!("the {listed} largest of {} charts; `mesh param --json` lists all", summary.chart_list.len());
     summary.chart_list.truncate(REPORT_LISTED_CHARTS);
+    let ran_on = if summary.cleaning.applied {
+        "a copy cleaned into an oriented manifold (see `cleaning`); uv.obj holds that copy"
+    } else {
+        "the mesh as read"
+    };
     let mut section = serde_json::to_value(&summary)?;
     if let Some(map) = section.as_object_mut() {
         map.remove("input");
+        map.insert("ran_on".into(), json!(ran_on));
         map.insert("boundary".into(), json!("circle, chord length"));
         map.insert("max_chart_faces".into(), json!(REPORT_CHART_FACES));
         map.insert("max_area_distortion".into(), json!(REPORT_AREA_DISTORTION));
@@ -430,8 +514,8 @@ fn spectral_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         "operator": info.map(|i| i.describe()),
         "laplacian": info.map(|i| i.laplacian.to_string()),
         "degenerate_faces": info.map(|i| i.degenerate_faces),
-        "component": format!(
-            "the largest of {} ({} of {} vertices; the fields are 0 elsewhere)",
+        "ran_on": format!(
+            "the largest of {} components ({} of {} vertices; the fields are 0 elsewhere)",
             components.count, piece_vertices, mesh.vertex_count()
         ),
         "eigenvalues": pairs.values.iter().map(|&x| finite(x)).collect::<Vec<_>>(),
