@@ -414,7 +414,7 @@ fn relative_difference(field: &[f64], reference: &[f64]) -> Option<(f64, f64)> {
         .filter(|(h, f)| h.is_finite() && f.is_finite())
         .map(|(h, f)| (h - f).abs() / scale)
         .collect();
-    if diff.is_empty() || !(scale > 0.0) {
+    if diff.is_empty() || scale <= 0.0 {
         return None;
     }
     diff.sort_by(f64::total_cmp);
