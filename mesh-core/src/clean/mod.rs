@@ -323,31 +323,6 @@ mod tests {
     }
 
     #[test]
-    fn moebius_strip_is_reported_unorientable() {
-        // A strip of 5 quads closed with a half twist.
-        let n = 5;
-        let mut p = Vec::new();
-        for i in 0..n {
-            let t = i as f64 / n as f64 * std::f64::consts::TAU;
-            for s in [-1.0, 1.0] {
-                let w = 0.3 * s;
-                let c = (t / 2.0).cos() * w;
-                p.push(DVec3::new((2.0 + c) * t.cos(), (2.0 + c) * t.sin(), (t / 2.0).sin() * w));
-            }
-        }
-        let mut faces = Vec::new();
-        for i in 0..n as u32 {
-            let (a, b) = (2 * i, 2 * i + 1);
-            let (c, d) = if i + 1 == n as u32 { (1, 0) } else { (2 * i + 2, 2 * i + 3) };
-            faces.push([a, c, b]);
-            faces.push([b, c, d]);
-        }
-        let (_, r) = clean(p, faces, &CleanOptions::default()).unwrap();
-        assert_eq!(r.unorientable_components, 1);
-        assert_eq!(r.flipped_faces, 0);
-    }
-
-    #[test]
     fn clean_rejects_bad_indices() {
         let e = clean(vec![DVec3::ZERO], vec![[0, 1, 2]], &CleanOptions::default()).unwrap_err();
         assert!(matches!(e, MeshError::IndexOutOfRange { .. }));

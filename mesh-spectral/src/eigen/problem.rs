@@ -203,20 +203,25 @@ fn restrict(l: &CsMat<f64>, vertices: &[usize], local: &[usize]) -> CsMat<f64> {
     CsMat::new((vertices.len(), vertices.len()), indptr, indices, data)
 }
 
+/// The graph Laplacian of `edges` on `n` vertices (unit weights), for tests.
+#[cfg(test)]
+pub(crate) fn graph_laplacian(n: usize, edges: &[(usize, usize)]) -> CsMat<f64> {
+    let mut t = sprs::TriMat::new((n, n));
+    for &(a, b) in edges {
+        t.add_triplet(a, b, -1.0);
+        t.add_triplet(b, a, -1.0);
+        t.add_triplet(a, a, 1.0);
+        t.add_triplet(b, b, 1.0);
+    }
+    t.to_csr()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use sprs::TriMat;
 
     fn path(n: usize, edges: &[(usize, usize)]) -> CsMat<f64> {
-        let mut t = TriMat::new((n, n));
-        for &(a, b) in edges {
-            t.add_triplet(a, b, -1.0);
-            t.add_triplet(b, a, -1.0);
-            t.add_triplet(a, a, 1.0);
-            t.add_triplet(b, b, 1.0);
-        }
-        t.to_csr()
+        graph_laplacian(n, edges)
     }
 
     #[test]

@@ -163,18 +163,10 @@ fn abs_times(abs: &SparseColMat<usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use sprs::TriMat;
 
     /// Path graph Laplacian on 3 vertices.
     fn path() -> sprs::CsMat<f64> {
-        let mut t = TriMat::new((3, 3));
-        for (a, b) in [(0, 1), (1, 2)] {
-            t.add_triplet(a, b, -1.0);
-            t.add_triplet(b, a, -1.0);
-            t.add_triplet(a, a, 1.0);
-            t.add_triplet(b, b, 1.0);
-        }
-        t.to_csr()
+        crate::eigen::problem::graph_laplacian(3, &[(0, 1), (1, 2)])
     }
 
     #[test]
