@@ -219,6 +219,7 @@ pub(crate) fn graph_laplacian(n: usize, edges: &[(usize, usize)]) -> CsMat<f64> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use sprs::TriMat;
 
     fn path(n: usize, edges: &[(usize, usize)]) -> CsMat<f64> {
         graph_laplacian(n, edges)
