@@ -3,13 +3,77 @@
 //!
 //! Every function is a short loop over faces or edges, O(F), allocation of
 //! the output only. Degenerate (zero-area) faces give zero normals and zero
-//! areas, never NaN.
+//! areas, never NaN. Lengths of products of coordinates (areas, normals) go
+//! through [`norm`] and [`unit_vector`], so that nothing over- or underflows
+//! for coordinates between 1e-150 and 1e150: the unit of length does not
+//! change an answer.
 
 use glam::DVec3;
 
 use crate::ids::{EdgeId, FaceId};
 use crate::mesh::TriMesh;
 use crate::par::map_indexed;
+
+/// Euclidean length of `v` without overflow or underflow in the squares:
+/// `v.length()` when the largest component lies in `[1e-150, 1e150]`,
+/// otherwise computed on `v` rescaled by a power of two (exact). 0 for the
+/// zero vector; infinite or NaN only when a component is.
+#[inline]
+pub fn norm(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m > 1e-150 && m < 1e150 {
+        return v.length();
+    }
+    if m == 0.0 || !m.is_finite() {
+        return if v.is_nan() { f64::NAN } else { m };
+    }
+    let unit = power_of_two_near(m);
+    (v / unit).length() * unit
+}
+
+/// `v / |v|` computed without overflow or underflow (see [`norm`]), or zero
+/// when `v` is zero or not finite.
+#[inline]
+pub fn unit_vector(v: DVec3) -> DVec3 {
+    let m = v.abs().max_element();
+    if m > 1e-150 && m < 1e150 {
+        return v.normalize_or_zero();
+    }
+    if m == 0.0 || !m.is_finite() {
+        return DVec3::ZERO;
+    }
+    (v / power_of_two_near(m)).normalize_or_zero()
+}
+
+/// The power of two `2^e` with `2^e <= x < 2^(e + 1)`, for finite `x > 0`
+/// (also subnormal); dividing by it is exact.
+#[inline]
+pub fn power_of_two_near(x: f64) -> f64 {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    if x >= f64::MIN_POSITIVE {
+        f64::from_bits(x.to_bits() & EXPONENT)
+    } else {
+        // Subnormal: lift into the normal range first (2^600 is exact).
+        let lift = 2f64.powi(600);
+        f64::from_bits((x * lift).to_bits() & EXPONENT) / lift
+    }
+}
+
+/// The triangle moved to its first corner and divided by a power of two
+/// near its size, and that power: `([0, b - a, c - a] / unit, unit)`, with
+/// `unit = 1` when the size lies in `[1e-60, 1e60]`. Angles, cotangents and
+/// normals computed on the result are those of the triangle, without
+/// overflow or underflow whatever the unit of length.
+#[inline]
+pub fn triangle_in_own_unit([a, b, c]: [DVec3; 3]) -> ([DVec3; 3], f64) {
+    let (ab, ac) = (b - a, c - a);
+    let m = ab.abs().max(ac.abs()).max_element();
+    if (m > 1e-60 && m < 1e60) || m == 0.0 || !m.is_finite() {
+        return ([DVec3::ZERO, ab, ac], 1.0);
+    }
+    let unit = power_of_two_near(m);
+    ([DVec3::ZERO, ab / unit, ac / unit], unit)
+}
 
 /// Twice the signed area vector of a triangle: (b - a) x (c - a).
 #[inline]
@@ -20,26 +84,33 @@ pub fn double_area_vector([a, b, c]: [DVec3; 3]) -> DVec3 {
 /// Area of a triangle.
 #[inline]
 pub fn triangle_area(tri: [DVec3; 3]) -> f64 {
-    0.5 * double_area_vector(tri).length()
+    0.5 * norm(double_area_vector(tri))
 }
 
 /// Unit normal of a counter-clockwise triangle (the seed's face normal, 2.2.2),
 /// or zero when the triangle has no area.
 #[inline]
 pub fn triangle_normal(tri: [DVec3; 3]) -> DVec3 {
-    double_area_vector(tri).normalize_or_zero()
+    unit_vector(double_area_vector(triangle_in_own_unit(tri).0))
 }
 
 /// Angle between two vectors in [0, pi], robust for tiny and nearly parallel
 /// vectors (atan2 of the sine and cosine parts); 0 when one is zero.
 #[inline]
 pub fn angle_between(u: DVec3, v: DVec3) -> f64 {
+    let m = u.abs().max(v.abs()).max_element();
+    if (m > 1e-60 && m < 1e60) || m == 0.0 || !m.is_finite() {
+        return norm(u.cross(v)).atan2(u.dot(v));
+    }
+    let unit = power_of_two_near(m);
+    let (u, v) = (u / unit, v / unit);
     u.cross(v).length().atan2(u.dot(v))
 }
 
 /// Interior angles of a triangle at its three corners (sum pi unless degenerate).
 #[inline]
-pub fn triangle_angles([a, b, c]: [DVec3; 3]) -> [f64; 3] {
+pub fn triangle_angles(tri: [DVec3; 3]) -> [f64; 3] {
+    let [a, b, c] = triangle_in_own_unit(tri).0;
     [angle_between(b - a, c - a), angle_between(c - b, a - b), angle_between(a - c, b - c)]
 }
 
@@ -78,14 +149,17 @@ pub enum NormalWeighting {
 
 /// Unit vertex normals: the normalized weighted sum of incident face normals.
 /// Isolated vertices, and vertices whose weighted sum vanishes, get zero
-/// (the Max weighting first falls back to the area weighting). O(F).
+/// (the Max weighting first falls back to the area weighting). The weights
+/// are summed in the mesh's [`crate::units::length_unit`], so that no unit
+/// of length over- or underflows them. O(F).
 pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> {
     let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
     let mut area_sum = vec![DVec3::ZERO; if weighting == NormalWeighting::Max { mesh.vertex_count() } else { 0 }];
+    let length_unit = crate::units::length_unit(mesh);
     for (f, tri) in mesh.faces().iter().enumerate() {
-        let corners = mesh.triangle(FaceId::new(f));
+        let corners = mesh.triangle(FaceId::new(f)).map(|p| p / length_unit);
         let area2 = double_area_vector(corners);
-        let unit = area2.normalize_or_zero();
+        let unit = unit_vector(area2);
         let weights: [DVec3; 3] = match weighting {
             NormalWeighting::Area => [area2; 3],
             NormalWeighting::Uniform => [unit; 3],
@@ -96,9 +170,9 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
                 // Corner k lies between edge k (to the next corner) and edge k + 2.
                 [0, 1, 2].map(|k| {
                     area_sum[tri[k] as usize] += area2;
-                    let w = len2[k] * len2[(k + 2) % 3];
-                    if w > 0.0 {
-                        area2 / w
+                    let (l1, l2) = (len2[k], len2[(k + 2) % 3]);
+                    if l1 > 0.0 && l2 > 0.0 {
+                        area2 / l1 / l2
                     } else {
                         DVec3::ZERO
                     }
@@ -110,9 +184,9 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
         }
     }
     for (v, n) in normals.iter_mut().enumerate() {
-        *n = match n.try_normalize() {
-            Some(unit) => unit,
-            None => area_sum.get(v).map_or(DVec3::ZERO, |a| a.normalize_or_zero()),
+        *n = match unit_vector(*n) {
+            DVec3::ZERO => area_sum.get(v).map_or(DVec3::ZERO, |a| unit_vector(*a)),
+            unit => unit,
         };
     }
     normals
@@ -121,7 +195,7 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
 /// Length of every edge, indexed by [`EdgeId`].
 pub fn edge_lengths(mesh: &TriMesh) -> Vec<f64> {
     let p = mesh.positions();
-    mesh.connectivity().edges().iter().map(|[a, b]| p[a.idx()].distance(p[b.idx()])).collect()
+    mesh.connectivity().edges().iter().map(|[a, b]| norm(p[b.idx()] - p[a.idx()])).collect()
 }
 
 /// Mean edge length (0 for a mesh without edges).
@@ -186,9 +260,17 @@ pub struct Aabb {
 }
 
 impl Aabb {
-    /// Length of the diagonal.
+    /// The smallest box holding `points`, `None` for no point.
+    pub fn of(points: &[DVec3]) -> Option<Self> {
+        let first = *points.first()?;
+        let (min, max) = points.iter().fold((first, first), |(lo, hi), &q| (lo.min(q), hi.max(q)));
+        Some(Self { min, max })
+    }
+
+    /// Length of the diagonal (finite for any finite box: the extent is
+    /// taken in halves, which cannot overflow).
     pub fn diagonal(&self) -> f64 {
-        (self.max - self.min).length()
+        norm(self.max * 0.5 - self.min * 0.5) * 2.0
     }
 
     /// Centre of the box.
@@ -199,28 +281,35 @@ impl Aabb {
 
 /// Bounding box of all vertices (referenced or not), `None` without vertices.
 pub fn bounding_box(mesh: &TriMesh) -> Option<Aabb> {
-    let p = mesh.positions();
-    let first = *p.first()?;
-    let (min, max) = p.iter().fold((first, first), |(lo, hi), &q| (lo.min(q), hi.max(q)));
-    Some(Aabb { min, max })
+    Aabb::of(mesh.positions())
 }
 
-/// Total surface area.
+/// Total surface area. Summed in the mesh's [`crate::units::length_unit`],
+/// so that it is right whenever it lies in the range of `f64` (infinite
+/// past `f64::MAX`, zero below the smallest subnormal).
 pub fn surface_area(mesh: &TriMesh) -> f64 {
-    mesh.face_ids().map(|f| triangle_area(mesh.triangle(f))).sum()
+    let unit = crate::units::length_unit(mesh);
+    let p = mesh.positions();
+    let sum: f64 = mesh.faces().iter().map(|t| triangle_area(t.map(|v| p[v as usize] / unit))).sum();
+    sum * unit * unit
 }
 
 /// Signed volume enclosed by the mesh, sum of a . (b x c) / 6 over faces
-/// (divergence theorem). Exact for closed outward-oriented meshes; for open
+/// (divergence theorem), in the mesh's [`crate::units::length_unit`] like
+/// [`surface_area`]. Exact for closed outward-oriented meshes; for open
 /// meshes it depends on the origin.
 pub fn enclosed_volume(mesh: &TriMesh) -> f64 {
-    mesh.face_ids()
-        .map(|f| {
-            let [a, b, c] = mesh.triangle(f);
+    let unit = crate::units::length_unit(mesh);
+    let p = mesh.positions();
+    let sum: f64 = mesh
+        .faces()
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| p[v as usize] / unit);
             a.dot(b.cross(c))
         })
-        .sum::<f64>()
-        / 6.0
+        .sum();
+    sum / 6.0 * unit * unit * unit
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
+//! | [`units`] | the unit of length: a mesh rescaled by a power of two so that no algorithm over- or underflows | |
 //!
 //! ```
 //! use mesh_core::{shapes, operators, solver::Cholesky};
@@ -56,6 +57,7 @@ pub mod shapes;
 pub mod solver;
 pub mod submesh;
 pub mod union_find;
+pub mod units;
 
 pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
 pub use error::{MeshError, NonManifoldReport, Result};

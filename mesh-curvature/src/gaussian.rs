@@ -58,6 +58,15 @@ impl GaussianCurvature {
 /// `pi` minus the others, so each face's angles sum to pi exactly), in
 /// parallel over faces with the `rayon` feature.
 pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let mut k = angle_defect(&mesh, options)?;
+    k.pointwise.iter_mut().for_each(|x| *x /= unit * unit);
+    k.area.iter_mut().for_each(|x| *x *= unit * unit);
+    Ok(k)
+}
+
+/// [`gaussian_curvature`] in the mesh's own unit.
+fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
     let conn = mesh.connectivity();
     let (angles, area) = par::join(|| corner_angles(mesh), || vertex_areas(mesh, options.area));
     let sums = par::map(mesh.vertex_count(), |i| {
@@ -105,7 +114,7 @@ pub(crate) fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
 pub(crate) fn triangle_angles(tri: [DVec3; 3]) -> [f64; 3] {
     // Edge k runs from corner k to corner k + 1.
     let e = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
-    let double_area = e[0].cross(e[2]).length();
+    let double_area = mesh_core::geometry::norm(e[0].cross(e[2]));
     let len2 = e.map(|x| x.length_squared());
     let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
         0

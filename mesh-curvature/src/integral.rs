@@ -47,6 +47,15 @@ impl IntegralCurvature {
 /// quantities plus O(sum of neighbourhood sizes), parallel over vertices.
 pub fn integral_curvature(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralCurvature> {
     let nbh = nbh.validate()?;
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let mut out = integrate(&mesh, nbh.in_unit(unit))?;
+    out.mean.iter_mut().for_each(|x| *x *= unit);
+    out.area.iter_mut().for_each(|x| *x *= unit * unit);
+    Ok(out)
+}
+
+/// [`integral_curvature`] in the mesh's own unit.
+fn integrate(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralCurvature> {
     let k = gaussian_curvature(mesh, &GaussianOptions { area: AreaKind::MixedVoronoi })?;
     let h = mean_curvature(mesh, &MeanOptions::default())?;
     let adj = Adjacency::new(mesh);

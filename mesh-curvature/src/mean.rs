@@ -57,9 +57,10 @@ pub struct MeanCurvature {
 /// Cost O(V + F): Laplacian assembly, one sparse product with the three
 /// coordinate columns (in parallel over rows with the `rayon` feature).
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
     let (normals, (lx, area)) =
-        par::join(|| vertex_normals(mesh, options.normals), || laplacian_and_area(mesh, options.area));
-    Ok(assemble(mesh, lx, area, &normals))
+        par::join(|| vertex_normals(&mesh, options.normals), || laplacian_and_area(&mesh, options.area));
+    Ok(assemble(&mesh, lx, area, &normals).in_unit(unit))
 }
 
 /// [`mean_curvature`] signed by the given vertex normals instead of a
@@ -77,8 +78,19 @@ pub fn mean_curvature_with_normals(mesh: &TriMesh, area: AreaKind, normals: &[DV
             reason: format!("{} normals for {} vertices", normals.len(), mesh.vertex_count()),
         });
     }
-    let (lx, area) = laplacian_and_area(mesh, area);
-    Ok(assemble(mesh, lx, area, normals))
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (lx, area) = laplacian_and_area(&mesh, area);
+    Ok(assemble(&mesh, lx, area, normals).in_unit(unit))
+}
+
+impl MeanCurvature {
+    /// The values of a mesh divided by `unit`, for the mesh itself.
+    fn in_unit(mut self, unit: f64) -> Self {
+        self.integrated.iter_mut().for_each(|x| *x *= unit);
+        self.pointwise.iter_mut().for_each(|x| *x /= unit);
+        self.area.iter_mut().for_each(|x| *x *= unit * unit);
+        self
+    }
 }
 
 /// `(L x)_i` for every vertex, and the vertex areas. O(V + F).

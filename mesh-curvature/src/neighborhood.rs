@@ -26,6 +26,15 @@ impl Default for Neighborhood {
 }
 
 impl Neighborhood {
+    /// The same neighbourhood on the mesh divided by `unit` (a ball's radius
+    /// is a length).
+    pub(crate) fn in_unit(self, unit: f64) -> Self {
+        match self {
+            Self::Ball(r) => Self::Ball(r / unit),
+            rings => rings,
+        }
+    }
+
     /// Checks the parameter.
     pub fn validate(self) -> Result<Self> {
         match self {

@@ -264,6 +264,12 @@ pub fn pointwise_curvature(mesh: &TriMesh, options: &PointwiseOptions) -> Result
             reason: format!("must be positive, got {}", options.resolution),
         });
     }
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    Ok(estimate(&mesh, options)?.in_unit(unit))
+}
+
+/// [`pointwise_curvature`] in the mesh's own unit.
+fn estimate(mesh: &TriMesh, options: &PointwiseOptions) -> Result<PointwiseCurvature> {
     let (tensor, (k, (radius, zero_area))) = par::join(
         || curvature_tensor(mesh, &options.tensor),
         || {
@@ -325,6 +331,19 @@ pub fn pointwise_curvature(mesh: &TriMesh, options: &PointwiseOptions) -> Result
     })
 }
 
+impl PointwiseCurvature {
+    /// The values of a mesh divided by `unit`, for the mesh itself.
+    fn in_unit(mut self, unit: f64) -> Self {
+        let square = unit * unit;
+        let per_length = self.tensor.k1.iter_mut().chain(&mut self.tensor.k2).chain(&mut self.mean);
+        per_length.chain(&mut self.mean_discrete).for_each(|x| *x /= unit);
+        self.gaussian.iter_mut().chain(&mut self.gaussian_discrete).for_each(|x| *x /= square);
+        self.mean_integrated.iter_mut().chain(&mut self.length).for_each(|x| *x *= unit);
+        self.area.iter_mut().for_each(|x| *x *= square);
+        self
+    }
+}
+
 /// The flag of an estimator status (`None` for valid and boundary
 /// vertices, whose values are estimates).
 fn status_flag(status: VertexStatus) -> Option<CurvatureFlag> {
@@ -359,6 +378,14 @@ pub const NEAR_DUPLICATE: f64 = 0.2;
 /// at the scale of the neighbourhood, only about the scan's noise.
 /// O(sum of 2-ring sizes), parallel over vertices.
 pub fn sampling_length(mesh: &TriMesh) -> Vec<f64> {
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let mut length = sampling_length_in_unit(&mesh);
+    length.iter_mut().for_each(|x| *x *= unit);
+    length
+}
+
+/// [`sampling_length`] in the mesh's own unit.
+fn sampling_length_in_unit(mesh: &TriMesh) -> Vec<f64> {
     let adj = Adjacency::new(mesh);
     let p = mesh.positions();
     par::map_with(mesh.vertex_count(), Gatherer::default, |g, i| {

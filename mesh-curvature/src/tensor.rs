@@ -153,6 +153,23 @@ pub fn curvedness(k1: f64, k2: f64) -> f64 {
 /// Cost O(V + F) for [`Method::Rusinkiewicz`], O(sum of neighbourhood sizes)
 /// for the others; parallel over vertices with the `rayon` feature.
 pub fn curvature_tensor(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> {
+    // Fits square and multiply coordinates: estimate in a unit where nothing
+    // over- or underflows, then bring the curvatures (1 / length) back.
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let method = match options.method {
+        Method::Fit(fit) => Method::Fit(FitOptions { neighborhood: fit.neighborhood.in_unit(unit), ..fit }),
+        Method::NormalCycle(nbh) => Method::NormalCycle(nbh.in_unit(unit)),
+        Method::Rusinkiewicz => Method::Rusinkiewicz,
+    };
+    let mut tensor = estimate(&mesh, &TensorOptions { method, ..*options })?;
+    for k in tensor.k1.iter_mut().chain(&mut tensor.k2) {
+        *k /= unit;
+    }
+    Ok(tensor)
+}
+
+/// [`curvature_tensor`] in the mesh's own unit.
+fn estimate(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> {
     let local = match options.method {
         Method::Fit(fit) => fit::estimate(mesh, options.normals, &fit)?,
         Method::Rusinkiewicz => rusinkiewicz::estimate(mesh, options.normals),

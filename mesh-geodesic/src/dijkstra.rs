@@ -131,7 +131,7 @@ pub(crate) fn propagate(mesh: &TriMesh, seeds: &[(VertexId, u32)], max_distance:
             if distance[w.idx()] <= d {
                 return; // settled (or about to be): no shorter path through v
             }
-            let nd = d + pv.distance(p[w.idx()]);
+            let nd = d + mesh_core::geometry::norm(p[w.idx()] - pv);
             if nd < distance[w.idx()] {
                 distance[w.idx()] = nd;
                 predecessor[w.idx()] = v;

@@ -81,14 +81,16 @@ const DEGENERATE: f64 = 1e-12;
 /// ```
 pub fn exact_distance(mesh: &TriMesh, sources: &[VertexId], options: &ExactOptions) -> Result<Vec<f64>> {
     validate_sources(mesh, sources)?;
+    // Unfoldings square lengths: work in a unit where nothing overflows.
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
     let conn = mesh.manifold_connectivity()?;
-    let geometry = Geometry::new(mesh)?;
+    let geometry = Geometry::new(&mesh)?;
     let mut state = Propagation::new(conn, &geometry, options.max_windows);
     for &s in sources {
         state.set_source(s);
     }
     state.run()?;
-    Ok(state.distance)
+    Ok(state.distance.iter().map(|d| d * unit).collect())
 }
 
 /// Per half-edge layout: half-edge `h` runs from A = (0, 0) to B = (len, 0)

@@ -126,7 +126,7 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
         // The farthest usable vertex; unreached components first.
         let farthest =
             (0..n).filter(|&v| usable[v]).max_by(|&a, &b| distance[a].total_cmp(&distance[b]).then(b.cmp(&a)));
-        let radius = farthest.map_or(0.0, |v| distance[v]);
+        let radius = farthest.map_or(0.0, |v| distance[v] * front.unit());
         radii.push(radius);
         next = match farthest {
             Some(v) if seeds.len() < count && radius > 0.0 => Some(front.vertex_at(v)),
@@ -169,6 +169,14 @@ impl<'a> Front<'a> {
         match self {
             Front::Fmm(fmm, _) => (0..mask.len()).map(|i| mask[fmm.vertex_at(i).idx()]).collect(),
             Front::Dijkstra(..) => mask.to_vec(),
+        }
+    }
+
+    /// What the front's distances are multiplied by to be in the mesh's unit.
+    fn unit(&self) -> f64 {
+        match self {
+            Front::Fmm(fmm, _) => fmm.unit,
+            Front::Dijkstra(..) => 1.0,
         }
     }
 

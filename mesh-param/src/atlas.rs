@@ -487,7 +487,7 @@ fn faces_apart(mesh: &TriMesh, fallback_length: f64) -> Result<(TriMesh, Vec<Ver
 fn flat_triangle(p: [DVec3; 3], fallback_length: f64) -> [DVec2; 3] {
     let (a, b) = (p[1] - p[0], p[2] - p[0]);
     let la = a.length();
-    let cross = a.cross(b).length();
+    let cross = mesh_core::geometry::norm(a.cross(b));
     if mesh_core::clean::is_degenerate_triangle(p, crate::weights::DEGENERATE_TOLERANCE) || la == 0.0 {
         let mean = (la + b.length() + (p[2] - p[1]).length()) / 3.0;
         let l = if mean > 0.0 { mean } else { fallback_length.max(f64::MIN_POSITIVE) };

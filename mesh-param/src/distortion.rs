@@ -101,7 +101,7 @@ pub fn face_distortion(p: [DVec3; 3], q: [DVec2; 3]) -> FaceDistortion {
     let (a, b) = (p[1] - p[0], p[2] - p[0]);
     let (d1, d2) = (q[1] - q[0], q[2] - q[0]);
     let cross = a.cross(b);
-    let surface_area = 0.5 * cross.length();
+    let surface_area = 0.5 * mesh_core::geometry::norm(cross);
     let det_q = d1.perp_dot(d2);
     let uv_signed_area = 0.5 * det_q;
     let degenerate = mesh_core::clean::is_degenerate_triangle(p, DEGENERATE_TOLERANCE);
@@ -152,8 +152,8 @@ fn uv_is_collapsed(q: [DVec2; 3], det_q: f64) -> bool {
 /// An orthonormal basis of the plane of a face with edge `a` and normal
 /// `cross`; any basis of the plane containing `a` for degenerate faces.
 fn frame(a: DVec3, cross: DVec3) -> (DVec3, DVec3) {
-    let e1 = a.normalize_or_zero();
-    let n = cross.normalize_or_zero();
+    let e1 = mesh_core::geometry::unit_vector(a);
+    let n = mesh_core::geometry::unit_vector(cross);
     if e1 == DVec3::ZERO {
         return (DVec3::X, DVec3::Y);
     }
@@ -187,7 +187,10 @@ pub fn distortion(mesh: &TriMesh, uv: &[DVec2]) -> Result<DistortionReport> {
         return Err(crate::ParamError::NonFinite { vertex: v });
     }
     let conn = mesh.manifold_connectivity()?;
-    let faces: Vec<FaceDistortion> = mesh
+    // Measured on the mesh in a unit where no area over- or underflows; the
+    // ratios do not depend on it, lengths and areas carry it back.
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let mut faces: Vec<FaceDistortion> = mesh
         .faces()
         .iter()
         .enumerate()
@@ -195,7 +198,21 @@ pub fn distortion(mesh: &TriMesh, uv: &[DVec2]) -> Result<DistortionReport> {
         .collect();
     let loops: Vec<Vec<DVec2>> =
         conn.boundary_loops()?.iter().map(|l| l.vertices.iter().map(|v| uv[v.idx()]).collect()).collect();
-    Ok(DistortionReport { summary: summarize(&faces, boundary_is_simple(&loops)), faces })
+    let mut summary = summarize(&faces, boundary_is_simple(&loops));
+    if unit != 1.0 {
+        let square = unit * unit;
+        for d in &mut faces {
+            d.jacobian = d.jacobian.map(|row| row.map(|x| x * unit));
+            d.singular_values = d.singular_values.map(|x| x * unit);
+            d.area_scale *= square;
+            d.torsion *= square;
+            d.nonuniform_scaling *= square;
+            d.surface_area *= square;
+        }
+        summary.dirichlet_energy *= square;
+        summary.surface_area *= square;
+    }
+    Ok(DistortionReport { summary, faces })
 }
 
 /// Totals of per-face measures (see [`DistortionSummary`]). O(F).

@@ -176,13 +176,20 @@ pub fn parameterize(mesh: &TriMesh, options: &Options) -> Result<Parameterizatio
 pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>, Vec<FaceId>)> {
     options.method.validate()?;
     let boundary = require_disk(mesh)?.vertices.clone();
+    // The weights' intermediates reach degree four in the coordinates: solve
+    // in a unit where they cannot over- or underflow.
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let mesh = mesh.as_ref();
+    let mut in_mesh_units = false;
     let (mut uv, degenerate_faces) = match options.method {
         Method::Lscm => {
             let pins = lscm_pins(&options.boundary)?;
+            in_mesh_units = pins.is_none();
             let map = lscm(mesh, &LscmOptions { pins, normalize: false, degenerate: options.degenerate })?;
             (map.uv, map.degenerate_faces)
         }
         Method::Arap { iterations } => {
+            in_mesh_units = true;
             let start = fixed_boundary(mesh, &Harmonic, &boundary, options)?;
             let arap = Arap::new(mesh, options.degenerate)?;
             (arap.solve(&start.0, iterations)?, start.1)
@@ -197,6 +204,8 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>,
     };
     if options.normalize && matches!(options.method, Method::Lscm | Method::Arap { .. }) {
         normalize_to_unit_box(&mut uv);
+    } else if in_mesh_units && unit != 1.0 {
+        uv.iter_mut().for_each(|q| *q *= unit);
     }
     Ok((uv, degenerate_faces))
 }

@@ -74,7 +74,7 @@ impl LocalTriangle {
         Self {
             len: [eij.length(), ejk.length(), eki.length()],
             dot: [-eki.dot(eij), -eij.dot(ejk), -ejk.dot(eki)],
-            double_area: eij.cross(-eki).length(),
+            double_area: mesh_core::geometry::norm(eij.cross(-eki)),
         }
     }
 

@@ -65,10 +65,23 @@ impl ManifoldHarmonics {
     }
 
     fn solve(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> Result<Self> {
-        let p = pencil(mesh, options.laplacian, options.mass)?;
-        let m = mesh_core::operators::mass::diagonal(p.mass.clone());
+        // Assembled in a unit where no area over- or underflows; the masses
+        // carry the unit squared back (and the eigenpairs follow them).
+        let (mesh, unit) = mesh_core::units::normalized(mesh);
+        let p = pencil(&mesh, options.laplacian, options.mass)?;
+        let mass: Vec<f64> = p.mass.iter().map(|m| m * unit * unit).collect();
+        if mass.iter().zip(&p.mass).any(|(m, inner)| !m.is_finite() || (*m == 0.0 && *inner > 0.0)) {
+            return Err(SpectralError::InvalidMatrix {
+                name: "M",
+                reason: format!(
+                    "the vertex areas of a mesh of size about {unit:.1e} are outside the range of double precision; \
+                     rescale the mesh"
+                ),
+            });
+        }
+        let m = mesh_core::operators::mass::diagonal(mass.clone());
         let pairs = eigenpairs(&p.laplacian, &m, k, &options.eigen)?;
-        Ok(Self { pairs, mass: p.mass, info: Some(p.info) })
+        Ok(Self { pairs, mass, info: Some(p.info) })
     }
 
     /// A basis from eigenpairs computed elsewhere (for instance with

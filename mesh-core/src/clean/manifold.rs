@@ -119,7 +119,7 @@ fn glue(mesh: &TriMesh, conn: &Connectivity, counts: &mut ManifoldCounts) -> Glu
         .face_ids()
         .map(|f| {
             let [a, b, c] = mesh.triangle(f);
-            (b - a).cross(c - a).normalize_or_zero()
+            crate::geometry::unit_vector((b - a).cross(c - a))
         })
         .collect();
     for e in 0..conn.edge_count() {

@@ -99,10 +99,19 @@ impl CleanReport {
 }
 
 /// `true` when twice the triangle's area is at most `tolerance` times its
-/// longest edge squared (collinear or coincident corners).
+/// longest edge squared (collinear or coincident corners). The test is
+/// scale-free: it runs on the triangle rescaled by a power of two so that its
+/// longest edge is about 1, so the unit of length never decides it.
 pub fn is_degenerate_triangle([a, b, c]: [DVec3; 3], tolerance: f64) -> bool {
-    let longest2 = (b - a).length_squared().max((c - b).length_squared()).max((a - c).length_squared());
-    (b - a).cross(c - a).length() <= tolerance * longest2
+    let (ab, ac, bc) = (b - a, c - a, c - b);
+    let longest = ab.abs().max(ac.abs()).max(bc.abs()).max_element();
+    if longest == 0.0 || !longest.is_finite() {
+        return longest == 0.0;
+    }
+    let unit = crate::geometry::power_of_two_near(longest);
+    let (ab, ac, bc) = (ab / unit, ac / unit, bc / unit);
+    let longest2 = ab.length_squared().max(bc.length_squared()).max(ac.length_squared());
+    ab.cross(ac).length() <= tolerance * longest2
 }
 
 /// Faces of zero area (see [`CleanOptions::degenerate_tolerance`]).

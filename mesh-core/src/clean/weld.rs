@@ -12,8 +12,9 @@ use crate::union_find::UnionFind;
 ///
 /// Exact welding (`tolerance == 0`) sorts positions; with a tolerance, points
 /// are sorted into cells of that size and each is compared with the 27
-/// neighbouring cells. Cost O(n log n). Non-finite or negative tolerances
-/// are an error.
+/// neighbouring cells. Cost O(n log n). Non-finite or negative tolerances,
+/// and tolerances larger than the bounding-box diagonal (which would merge
+/// every vertex into one), are an error.
 pub fn weld_vertices(
     positions: &[DVec3],
     faces: &[[u32; 3]],
@@ -21,6 +22,15 @@ pub fn weld_vertices(
 ) -> Result<(Vec<DVec3>, Vec<[u32; 3]>, usize)> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
         return Err(MeshError::InvalidOption { name: "weld_tolerance", reason: format!("{tolerance} is not >= 0") });
+    }
+    let diagonal = crate::geometry::Aabb::of(positions).map_or(0.0, |b| b.diagonal());
+    if diagonal > 0.0 && tolerance > diagonal {
+        return Err(MeshError::InvalidOption {
+            name: "weld_tolerance",
+            reason: format!(
+                "{tolerance} is larger than the bounding-box diagonal {diagonal:.6e}: every vertex would merge into one"
+            ),
+        });
     }
     let n = positions.len();
     let mut sets = UnionFind::new(n);

@@ -291,10 +291,16 @@ fn rotate(v: [u32; 3], k: usize) -> [u32; 3] {
 pub fn heron_area(a: f64, b: f64, c: f64) -> f64 {
     let mut s = [a, b, c];
     s.sort_unstable_by(|x, y| y.total_cmp(x));
-    let [a, b, c] = s;
+    if !(s[0] > 0.0 && s[0].is_finite()) {
+        return 0.0;
+    }
+    // On the lengths divided by a power of two near the longest (exact), so
+    // that the product of four lengths neither over- nor underflows.
+    let unit = crate::geometry::power_of_two_near(s[0]);
+    let [a, b, c] = s.map(|x| x / unit);
     let p = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
     if p > 0.0 {
-        0.25 * p.sqrt()
+        0.25 * p.sqrt() * unit * unit
     } else {
         0.0
     }

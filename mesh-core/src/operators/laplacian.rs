@@ -23,8 +23,8 @@ pub fn triangle_cotans(tri: [DVec3; 3]) -> [f64; 3] {
     if is_degenerate_triangle(tri, DEGENERATE_TOLERANCE) {
         return [0.0; 3];
     }
-    let [a, b, c] = tri;
-    let double_area = (b - a).cross(c - a).length();
+    let [a, b, c] = crate::geometry::triangle_in_own_unit(tri).0;
+    let double_area = crate::geometry::norm((b - a).cross(c - a));
     [(b - a).dot(c - a) / double_area, (c - b).dot(a - b) / double_area, (a - c).dot(b - c) / double_area]
 }
 

@@ -49,22 +49,31 @@ pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
 /// zero-area triangles give zeros. Per-corner weights of curvature estimators
 /// (Rusinkiewicz 2004) use it directly.
 pub fn mixed_voronoi_corners(tri: [glam::DVec3; 3]) -> [f64; 3] {
+    // Shares of the triangle in its own unit, times the unit squared.
+    let (tri, unit) = crate::geometry::triangle_in_own_unit(tri);
     let area = triangle_area(tri);
     if area <= 0.0 || !area.is_finite() {
         return [0.0; 3];
     }
+    let square = unit * unit;
     let [a, b, c] = tri;
     let (da, db, dc) = ((b - a).dot(c - a), (c - b).dot(a - b), (a - c).dot(b - c));
     // A corner is obtuse when the dot product of its two edges is negative.
-    if da < 0.0 {
-        return [area / 2.0, area / 4.0, area / 4.0];
-    }
-    if db < 0.0 {
-        return [area / 4.0, area / 2.0, area / 4.0];
-    }
-    if dc < 0.0 {
-        return [area / 4.0, area / 4.0, area / 2.0];
-    }
+    let shares = if da < 0.0 {
+        [area / 2.0, area / 4.0, area / 4.0]
+    } else if db < 0.0 {
+        [area / 4.0, area / 2.0, area / 4.0]
+    } else if dc < 0.0 {
+        [area / 4.0, area / 4.0, area / 2.0]
+    } else {
+        voronoi_shares(tri, area, [da, db, dc])
+    };
+    shares.map(|x| x * square)
+}
+
+/// The Voronoi shares of a triangle without obtuse angles, from its area and
+/// the dot products of the edges at each corner.
+fn voronoi_shares([a, b, c]: [glam::DVec3; 3], area: f64, [da, db, dc]: [f64; 3]) -> [f64; 3] {
     // cot at a corner = dot / (2 area); the Voronoi area at a is
     // (|ab|^2 cot C + |ac|^2 cot B) / 8.
     let inv = 1.0 / (2.0 * area);

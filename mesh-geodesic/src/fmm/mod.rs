@@ -115,8 +115,12 @@ impl Default for FmmOptions {
 pub struct FastMarching {
     stencils: Stencils,
     weights: Option<Vec<f64>>,
+    /// Max distance in the internal unit.
     max_distance: f64,
     update: FmmUpdate,
+    /// The unit of length the stencils are in ([`mesh_core::units::normalized`]):
+    /// internal distances times `unit` are distances on the mesh.
+    pub(crate) unit: f64,
 }
 
 impl FastMarching {
@@ -140,10 +144,13 @@ impl FastMarching {
             });
         }
         let curved = options.update == FmmUpdate::CurvedFront;
-        let stencils = Stencils::new(mesh, options.split_obtuse, options.max_unfold, curved);
+        // Metric determinants are of degree four in the coordinates.
+        let (mesh, unit) = mesh_core::units::normalized(mesh);
+        let stencils = Stencils::new(&mesh, options.split_obtuse, options.max_unfold, curved);
         // Weights in the internal (breadth-first) numbering.
         let weights = options.weights.as_ref().map(|w| stencils.order.iter().map(|&v| w[v as usize]).collect());
-        Ok(Self { stencils, weights, max_distance: options.max_distance, update: options.update })
+        let max_distance = options.max_distance / unit;
+        Ok(Self { stencils, weights, max_distance, update: options.update, unit })
     }
 
     /// Number of vertices of the mesh this was built for.
@@ -185,7 +192,8 @@ impl FastMarching {
                 *l = u32::MAX;
             }
         }
-        Ok((self.to_vertex_order(&distance), self.to_vertex_order(&labels)))
+        let distance: Vec<f64> = self.to_vertex_order(&distance).iter().map(|d| d * self.unit).collect();
+        Ok((distance, self.to_vertex_order(&labels)))
     }
 
     /// A per-vertex field from the internal numbering to the mesh's.
@@ -200,10 +208,10 @@ impl FastMarching {
     /// values are kept. O(V log V) for the region reached.
     pub(crate) fn extend(&self, known: &[f64]) -> Vec<f64> {
         let order = &self.stencils.order;
-        let mut distance: Vec<f64> = order.iter().map(|&v| known[v as usize]).collect();
+        let mut distance: Vec<f64> = order.iter().map(|&v| known[v as usize] / self.unit).collect();
         let mut labels = vec![u32::MAX; distance.len()];
         March::new(distance.len()).run_from_known(self, &mut distance, &mut labels);
-        self.to_vertex_order(&distance)
+        self.to_vertex_order(&distance).iter().map(|d| d * self.unit).collect()
     }
 
     /// The mesh vertex at an internal index.

@@ -243,7 +243,7 @@ pub(crate) fn split_obtuse(
     let (e1, e2) = (p[x1.idx()] - p[x.idx()], p[x2.idx()] - p[x.idx()]);
     let l1 = e1.length();
     let q1 = DVec2::new(l1, 0.0);
-    let q2 = DVec2::new(e1.dot(e2) / l1, e1.cross(e2).length() / l1);
+    let q2 = DVec2::new(e1.dot(e2) / l1, mesh_core::geometry::norm(e1.cross(e2)) / l1);
     // The edge being crossed runs from a (on the e1 side) to b (on the e2
     // side); `apex` is the vertex of the current triangle opposite to it.
     let mut h = h0.next();

@@ -167,6 +167,9 @@ pub struct HeatGeodesics {
     /// Connected component of each vertex (`u32::MAX` when isolated).
     component: Vec<u32>,
     component_count: usize,
+    /// The unit of length the operators are in: internal distances times
+    /// `unit` are distances on the mesh.
+    unit: f64,
 }
 
 impl HeatGeodesics {
@@ -184,6 +187,9 @@ impl HeatGeodesics {
         if mesh.face_count() == 0 {
             return Err(mesh_core::MeshError::Empty.into());
         }
+        // Masses are areas: work in a unit where they cannot over- or underflow.
+        let (mesh, unit) = mesh_core::units::normalized(mesh);
+        let mesh = mesh.as_ref();
         let n = mesh.vertex_count();
         let extrinsic = || {
             let faces = extrinsic_faces(mesh);
@@ -253,7 +259,8 @@ impl HeatGeodesics {
         };
         Ok(Self {
             vertex_count: n,
-            time,
+            time: time * unit * unit,
+            unit,
             faces,
             neumann,
             dirichlet,
@@ -316,7 +323,9 @@ impl HeatGeodesics {
         };
         self.poisson.solve_in_place(&mut phi)?;
         let phi = self.shift_to_sources(phi, sources);
-        self.finish(phi, &u, &resolved, sources)
+        let mut out = self.finish(phi, &u, &resolved, sources)?;
+        out.distance.iter_mut().for_each(|d| *d *= self.unit);
+        Ok(out)
     }
 
     /// Step 1: the backward Euler heat flow (M / h^2 + m L) u = delta from

@@ -363,6 +363,62 @@ pub fn eigenpairs(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &Options) -
     if k == 0 {
         return Err(SpectralError::InvalidOption { name: "k", reason: "at least one eigenpair is needed".into() });
     }
+    let units = Units::of(l, m);
+    if units.is_identity() {
+        return solve(l, m, k, options, start);
+    }
+    let options = Options { shift: options.shift.map(|s| s / units.lambda()), ..options.clone() };
+    let mut out = solve(&l.map(|x| x / units.l), &m.map(|x| x / units.m), k, &options, start)?;
+    units.restore(&mut out);
+    Ok(out)
+}
+
+/// Powers of two near the sizes of `L` and `M` (`M`'s an even power, so that
+/// its square root is exact), by which the pencil is divided when either lies
+/// outside `[2^-100, 2^100]`: a mesh's mass matrix carries the square of its
+/// unit of length, and the solver's products of masses would over- or
+/// underflow. Division by powers of two changes no digit of the answer.
+struct Units {
+    l: f64,
+    m: f64,
+}
+
+impl Units {
+    fn of(l: &CsMat<f64>, m: &CsMat<f64>) -> Self {
+        let size = |a: &CsMat<f64>| a.data().iter().fold(0.0_f64, |s, x| s.max(x.abs()));
+        let near = |x: f64| if x > 0.0 && x.is_finite() { mesh_core::geometry::power_of_two_near(x) } else { 1.0 };
+        let safe = |x: f64| (2f64.powi(-100)..=2f64.powi(100)).contains(&x);
+        let (lu, mu) = (near(size(l)), near(size(m)));
+        if safe(lu) && safe(mu) {
+            return Self { l: 1.0, m: 1.0 };
+        }
+        let even = 2f64.powi(mu.log2().round() as i32 & !1);
+        Self { l: lu, m: even }
+    }
+
+    fn is_identity(&self) -> bool {
+        self.l == 1.0 && self.m == 1.0
+    }
+
+    /// The eigenvalues of the given pencil per eigenvalue of the scaled one.
+    fn lambda(&self) -> f64 {
+        self.l / self.m
+    }
+
+    /// Pairs of the scaled pencil to pairs of the given one: values times
+    /// `l / m`, vectors divided by `sqrt(m)` (so that `x^T M x` stays 1).
+    fn restore(&self, out: &mut Eigenpairs) {
+        let (lambda, root) = (self.lambda(), self.m.sqrt());
+        out.values.iter_mut().chain(&mut out.absolute_residuals).for_each(|x| *x *= lambda);
+        out.stats.shift = out.stats.shift.map(|s| s * lambda);
+        for j in 0..out.vectors.ncols() {
+            out.vectors.col_as_slice_mut(j).iter_mut().for_each(|x| *x /= root);
+        }
+    }
+}
+
+/// [`eigenpairs`] on a pencil of moderate size.
+fn solve(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &Options, start: Instant) -> Result<Eigenpairs> {
     let mut problem = problem::split(l, m)?;
     let components = problem.components.len();
     if options.component == ComponentSelection::Largest {

@@ -11,6 +11,7 @@ mod nurbs;
 mod param;
 mod scale;
 mod spectral;
+mod units;
 mod wavelet;
 
 use std::path::{Path, PathBuf};
@@ -30,6 +31,7 @@ const GROUPS: &[Group] = &[
     ("nurbs", nurbs::run),
     ("param", param::run),
     ("spectral", spectral::run),
+    ("units", units::run),
     ("wavelet", wavelet::run),
 ];
 
