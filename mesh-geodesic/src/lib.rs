@@ -16,7 +16,8 @@
 //! source reaches (other components, isolated vertices), never NaN. Input
 //! that cannot be handled is a [`GeodesicError`]; nothing panics.
 //!
-//! ```
+#![cfg_attr(feature = "heat", doc = "```")]
+#![cfg_attr(not(feature = "heat"), doc = "```ignore")]
 //! use mesh_core::{shapes, VertexId};
 //! use mesh_geodesic::{FastMarching, FmmOptions, HeatGeodesics, HeatOptions, SurfacePoint, TraceOptions};
 //!
@@ -53,6 +54,7 @@ pub mod dijkstra;
 pub mod error;
 pub mod exact;
 pub mod fmm;
+#[cfg(feature = "heat")]
 pub mod heat;
 pub mod sampling;
 mod support;
@@ -62,6 +64,7 @@ pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
 pub use error::{GeodesicError, Result};
 pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
+#[cfg(feature = "heat")]
 pub use heat::{
     heat_distance, HeatBoundary, HeatDistance, HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus,
 };
@@ -69,6 +72,6 @@ pub use sampling::{farthest_point_sampling, geodesic_voronoi, GeodesicVoronoi, S
 pub use trace::{trace_path, GeodesicPath, SurfacePoint, TraceOptions};
 
 /// The README's example, compiled and run as a doc-test.
-#[cfg(doctest)]
+#[cfg(all(doctest, feature = "heat"))]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;

@@ -206,6 +206,7 @@ impl FastMarching {
     /// in `known`, one per vertex) to the vertices marked `+infinity` that
     /// the known region reaches (see [`March::run_from_known`]); known
     /// values are kept. O(V log V) for the region reached.
+    #[cfg(feature = "heat")]
     pub(crate) fn extend(&self, known: &[f64]) -> Vec<f64> {
         let order = &self.stencils.order;
         let mut distance: Vec<f64> = order.iter().map(|&v| known[v as usize] / self.unit).collect();
@@ -293,6 +294,7 @@ impl March {
     /// with a finite value in `distance` keep it and are accepted at once
     /// (with a straight front, kappa = 0, and label 0); the others get the
     /// distance through them. O(V log V) for the region reached.
+    #[cfg(feature = "heat")]
     pub(crate) fn run_from_known(&mut self, fmm: &FastMarching, distance: &mut [f64], labels: &mut [u32]) {
         self.next_run();
         let run = self.run;

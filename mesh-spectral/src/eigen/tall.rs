@@ -31,15 +31,11 @@ fn slabs(n: usize, work: usize) -> usize {
 }
 
 /// `out = a^T b` (a: n x k, b: n x m, out: k x m).
-pub(crate) fn gram(mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>) {
+pub(crate) fn gram(out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>) {
     let n = a.nrows();
     let parts = slabs(n, n * a.ncols() * b.ncols());
-    if parts <= 1 {
-        matmul(out, Accum::Replace, a.transpose(), b, 1.0, Par::Seq);
-        return;
-    }
     #[cfg(feature = "rayon")]
-    {
+    if parts > 1 {
         use rayon::prelude::*;
         let (k, m) = (a.ncols(), b.ncols());
         let sum = a
@@ -51,8 +47,12 @@ pub(crate) fn gram(mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f
                 part
             })
             .reduce(|| Mat::zeros(k, m), |x, y| x + y);
+        let mut out = out;
         out.copy_from(&sum);
+        return;
     }
+    let _ = parts;
+    matmul(out, Accum::Replace, a.transpose(), b, 1.0, Par::Seq);
 }
 
 /// `out = beta_out + alpha a c` with `beta` Replace or Add (a: n x k,
@@ -60,17 +60,16 @@ pub(crate) fn gram(mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f
 pub(crate) fn mul(out: MatMut<'_, f64>, accum: Accum, a: MatRef<'_, f64>, c: MatRef<'_, f64>, alpha: f64) {
     let n = a.nrows();
     let parts = slabs(n, n * a.ncols() * c.ncols());
-    if parts <= 1 {
-        matmul(out, accum, a, c, alpha, Par::Seq);
-        return;
-    }
     #[cfg(feature = "rayon")]
-    {
+    if parts > 1 {
         use rayon::prelude::*;
         out.par_row_partition_mut(parts).zip(a.par_row_partition(parts)).for_each(|(o, a)| {
             matmul(o, accum, a, c, alpha, Par::Seq);
         });
+        return;
     }
+    let _ = parts;
+    matmul(out, accum, a, c, alpha, Par::Seq);
 }
 
 /// `v[:, ..p] = v S` in place (v: n x s, S: s x p, p <= s), by slabs of
@@ -91,15 +90,14 @@ pub(crate) fn rotate_in_place(v: MatMut<'_, f64>, s: MatRef<'_, f64>) {
             r0 += len;
         }
     };
-    if parts <= 1 {
-        rotate(v);
-        return;
-    }
     #[cfg(feature = "rayon")]
-    {
+    if parts > 1 {
         use rayon::prelude::*;
         v.par_row_partition_mut(parts).for_each(rotate);
+        return;
     }
+    let _ = parts;
+    rotate(v);
 }
 
 #[cfg(test)]
