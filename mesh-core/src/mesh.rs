@@ -62,10 +62,10 @@ impl TriMesh {
     /// Builds a mesh from flat coordinate and index arrays (`xyz` holds three
     /// numbers per vertex, `indices` three per triangle).
     pub fn from_flat(xyz: &[f64], indices: &[u32]) -> Result<Self> {
-        if xyz.len() % 3 != 0 {
+        if !xyz.len().is_multiple_of(3) {
             return Err(MeshError::Dimension(format!("{} coordinates is not a multiple of 3", xyz.len())));
         }
-        if indices.len() % 3 != 0 {
+        if !indices.len().is_multiple_of(3) {
             return Err(MeshError::Dimension(format!("{} indices is not a multiple of 3", indices.len())));
         }
         let positions = xyz.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect();

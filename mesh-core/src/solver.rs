@@ -62,7 +62,7 @@ fn check_square(a: &CsMat<f64>) -> Result<usize> {
 }
 
 fn check_rhs(n: usize, len: usize) -> Result<()> {
-    if len % n.max(1) != 0 || (n == 0 && len != 0) {
+    if !len.is_multiple_of(n.max(1)) || (n == 0 && len != 0) {
         return Err(MeshError::Dimension(format!("right-hand side of length {len} for {n} unknowns")));
     }
     Ok(())

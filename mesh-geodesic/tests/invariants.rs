@@ -18,7 +18,7 @@ fn random_mesh(kind: u8, seed: u64, amplitude: f64) -> TriMesh {
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     };
-    if kind % 2 == 0 {
+    if kind.is_multiple_of(2) {
         let mut m = shapes::icosphere(2).unwrap();
         m.positions_mut().iter_mut().for_each(|p| *p *= 1.0 + amplitude * noise());
         m

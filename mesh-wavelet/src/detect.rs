@@ -260,7 +260,7 @@ fn face_components(topo: &Topology<'_>, faces: &[[u32; 3]]) -> (Vec<u32>, usize)
 /// `topo`), giving the coarse mesh and its topology, or says why not.
 fn reverse(topo: &Topology<'_>, faces: &[[u32; 3]]) -> Result<(Reversal, Topology<'static>), String> {
     let nf = faces.len();
-    if nf % 4 != 0 {
+    if !nf.is_multiple_of(4) {
         return Err(format!("{nf} faces is not a multiple of 4"));
     }
     let (face_comp, count) = face_components(topo, faces);
