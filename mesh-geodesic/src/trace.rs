@@ -184,7 +184,16 @@ pub fn trace_path(
         0 => 4 * (mesh.vertex_count() + mesh.face_count()) + 64,
         m => m,
     };
-    Tracer::new(mesh, distance, sources).run(from, max_steps)
+    // Gradients divide by areas: trace in a unit where none over- or underflows.
+    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    if unit == 1.0 {
+        return Tracer::new(&mesh, distance, sources).run(from, max_steps);
+    }
+    let distance: Vec<f64> = distance.iter().map(|d| d / unit).collect();
+    let mut path = Tracer::new(&mesh, &distance, sources).run(from, max_steps)?;
+    path.positions.iter_mut().for_each(|p| *p *= unit);
+    path.length *= unit;
+    Ok(path)
 }
 
 /// The flow's state between steps.

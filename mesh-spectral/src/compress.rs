@@ -75,12 +75,19 @@ fn curve(
     let pm = Mat::from_fn(n, 3, |i, j| p[i][j]);
     let c = harmonics.forward_columns(pm.as_ref())?;
     let diagonal = mesh_core::geometry::bounding_box(mesh).map_or(0.0, |b| b.diagonal());
-    let scale = if diagonal > 0.0 { 1.0 / diagonal } else { 1.0 };
+    // Errors are measured on positions and masses divided by powers of two
+    // near their sizes (mass times squared distance is of degree four), and
+    // reported relative to the diagonal.
+    let unit = mesh_core::units::length_unit(mesh);
+    let scale = if diagonal > 0.0 { unit / diagonal } else { 1.0 };
     let mut excluded = vec![false; n];
     for &v in &harmonics.eigenpairs().excluded {
         excluded[v] = true;
     }
-    let mass = harmonics.mass();
+    let largest = harmonics.mass().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let mass_unit =
+        if largest > 0.0 && largest.is_finite() { mesh_core::geometry::power_of_two_near(largest) } else { 1.0 };
+    let mass: Vec<f64> = harmonics.mass().iter().map(|m| m / mass_unit).collect();
     let total_mass: f64 = mass.iter().sum();
     let counted = excluded.iter().filter(|e| !**e).count().max(1) as f64;
     let mut order: Vec<usize> = (0..keeps.len()).collect();
@@ -98,7 +105,7 @@ fn curve(
         }
         let (mut weighted, mut plain, mut worst) = (0.0, 0.0, 0.0f64);
         for v in (0..n).filter(|&v| !excluded[v]) {
-            let d2 = (0..3).map(|j| (p[v][j] - recon[(v, j)]).powi(2)).sum::<f64>();
+            let d2 = (0..3).map(|j| ((p[v][j] - recon[(v, j)]) / unit).powi(2)).sum::<f64>();
             weighted += mass[v] * d2;
             plain += d2;
             worst = worst.max(d2);

@@ -212,9 +212,18 @@ impl ManifoldHarmonics {
     /// `Phi^T M F` for the columns of `f` (n x c).
     pub(crate) fn forward_columns(&self, f: MatRef<'_, f64>) -> Result<Mat<f64>> {
         self.check_len(f.nrows())?;
-        let mf = Mat::from_fn(f.nrows(), f.ncols(), |i, j| self.mass[i] * f[(i, j)]);
+        // M f carries the unit of length cubed for positions: form it from
+        // the mass and values divided by powers of two near their sizes, and
+        // bring the factors back one at a time.
+        let near = |x: f64| if x > 0.0 && x.is_finite() { mesh_core::geometry::power_of_two_near(x) } else { 1.0 };
+        let mass_unit = near(self.mass.iter().fold(0.0, |m, x| x.abs().max(m)));
+        let value_unit = near((0..f.ncols()).flat_map(|j| f.col(j).iter().copied()).fold(0.0, |m, x| x.abs().max(m)));
+        let mf = Mat::from_fn(f.nrows(), f.ncols(), |i, j| (self.mass[i] / mass_unit) * (f[(i, j)] / value_unit));
         let mut c = Mat::zeros(self.len(), f.ncols());
         tall::gram(c.as_mut(), self.pairs.vectors(), mf.as_ref());
+        for j in 0..c.ncols() {
+            c.col_mut(j).iter_mut().for_each(|x| *x = *x * mass_unit * value_unit);
+        }
         Ok(c)
     }
 

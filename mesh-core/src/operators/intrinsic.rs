@@ -41,12 +41,16 @@ impl Default for IntrinsicOptions {
 /// A triangulation of the mesh's vertices by intrinsic edges: faces (which may
 /// differ from the mesh's after flips) with the length of every half-edge.
 /// Edges without a twin (boundary, non-manifold, inconsistently oriented) are
-/// never flipped.
+/// never flipped. Lengths are kept in the mesh's
+/// [`crate::units::length_unit`] (a power of two, so no digit changes), so
+/// that flips and cotangents neither over- nor underflow whatever the unit.
 #[derive(Debug, Clone)]
 pub struct IntrinsicTriangulation {
     vertex_count: usize,
     faces: Vec<[u32; 3]>,
+    /// Half-edge lengths divided by `unit`.
     lengths: Vec<f64>,
+    unit: f64,
     twin: Vec<HalfedgeId>,
     flips: usize,
 }
@@ -59,11 +63,12 @@ impl IntrinsicTriangulation {
             return Err(MeshError::InvalidOption { name: "mollify", reason: format!("{mollify} is not >= 0") });
         }
         let conn = mesh.connectivity();
+        let unit = crate::units::length_unit(mesh);
         let p = mesh.positions();
         let mut lengths: Vec<f64> = (0..conn.halfedge_count())
             .map(|h| {
                 let h = HalfedgeId(h as u32);
-                p[conn.origin(h).idx()].distance(p[conn.dest(h).idx()])
+                crate::geometry::norm((p[conn.dest(h).idx()] - p[conn.origin(h).idx()]) / unit)
             })
             .collect();
         let twin = (0..conn.halfedge_count())
@@ -84,7 +89,7 @@ impl IntrinsicTriangulation {
                 lengths.iter_mut().for_each(|l| *l += eps);
             }
         }
-        Ok(Self { vertex_count: mesh.vertex_count(), faces: mesh.faces().to_vec(), lengths, twin, flips: 0 })
+        Ok(Self { vertex_count: mesh.vertex_count(), faces: mesh.faces().to_vec(), lengths, unit, twin, flips: 0 })
     }
 
     /// The intrinsic Delaunay triangulation of the mesh: mollify, then flip
@@ -106,8 +111,9 @@ impl IntrinsicTriangulation {
     }
 
     /// Length of half-edge `3 f + k`, from corner k to k + 1 of face f.
-    pub fn lengths(&self) -> &[f64] {
-        &self.lengths
+    /// O(F) (a copy in the mesh's unit).
+    pub fn lengths(&self) -> Vec<f64> {
+        self.lengths.iter().map(|l| l * self.unit).collect()
     }
 
     /// Number of edge flips performed.
@@ -120,6 +126,13 @@ impl IntrinsicTriangulation {
     /// face of zero area (possible only without mollification).
     pub fn opposite_cotan(&self, h: HalfedgeId) -> f64 {
         let (a, b, c) = (self.lengths[h.idx()], self.lengths[h.next().idx()], self.lengths[h.prev().idx()]);
+        // In the triangle's own unit: the products of lengths stay in range.
+        let longest = a.max(b).max(c);
+        if !(longest > 0.0 && longest.is_finite()) {
+            return 0.0;
+        }
+        let unit = crate::geometry::power_of_two_near(longest);
+        let (a, b, c) = (a / unit, b / unit, c / unit);
         let area4 = 4.0 * heron_area(a, b, c);
         if area4 > 0.0 {
             (b * b + c * c - a * a) / area4
@@ -268,7 +281,7 @@ impl IntrinsicTriangulation {
         let mut m = vec![0.0; self.vertex_count];
         for (f, tri) in self.faces.iter().enumerate() {
             let l = &self.lengths[3 * f..3 * f + 3];
-            let a = heron_area(l[0], l[1], l[2]) / 3.0;
+            let a = heron_area(l[0], l[1], l[2]) / 3.0 * self.unit * self.unit;
             for &v in tri {
                 m[v as usize] += a;
             }

@@ -68,7 +68,8 @@ pub fn mixed_voronoi_corners(tri: [glam::DVec3; 3]) -> [f64; 3] {
     } else {
         voronoi_shares(tri, area, [da, db, dc])
     };
-    shares.map(|x| x * square)
+    // (0 times an overflowed square is 0, not NaN.)
+    shares.map(|x| if x == 0.0 { 0.0 } else { x * square })
 }
 
 /// The Voronoi shares of a triangle without obtuse angles, from its area and

@@ -24,7 +24,7 @@ pub(crate) fn unchanged_lengths(mesh: &TriMesh, lengths: &[f64]) -> bool {
     mesh.faces()
         .iter()
         .zip(lengths.chunks_exact(3))
-        .all(|(f, l)| (0..3).all(|k| p[f[k] as usize].distance(p[f[(k + 1) % 3] as usize]) == l[k]))
+        .all(|(f, l)| (0..3).all(|k| mesh_core::geometry::norm(p[f[(k + 1) % 3] as usize] - p[f[k] as usize]) == l[k]))
 }
 
 /// `diag(mass) + t L` with 1 on the diagonal of isolated vertices. Same

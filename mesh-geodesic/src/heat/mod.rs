@@ -199,7 +199,7 @@ impl HeatGeodesics {
             HeatLaplacian::Cotan => extrinsic(),
             HeatLaplacian::IntrinsicDelaunay => {
                 let t = IntrinsicTriangulation::delaunay(mesh, &options.intrinsic)?;
-                if t.flip_count() == 0 && unchanged_lengths(mesh, t.lengths()) {
+                if t.flip_count() == 0 && unchanged_lengths(mesh, &t.lengths()) {
                     // Already Delaunay and not mollified: the same operator,
                     // assembled faster from the mesh's edges.
                     extrinsic()
