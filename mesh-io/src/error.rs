@@ -156,6 +156,18 @@ pub enum IoError {
         /// What was given.
         found: usize,
     },
+    /// A glTF buffer `uri` that may not be read: not a `data:` URI or a
+    /// relative path to a regular file inside the `.gltf` file's folder, or a
+    /// file shorter than the buffer's `byteLength`.
+    #[error("{at}: buffer uri `{uri}` refused: {reason}")]
+    ExternalBuffer {
+        /// Where (the `.gltf` file).
+        at: Location,
+        /// The URI as written.
+        uri: String,
+        /// Why it is refused, naming the file it resolves to when it got that far.
+        reason: String,
+    },
     /// The glTF JSON is malformed or does not validate.
     #[error("{at}: {source}")]
     Gltf {
@@ -207,6 +219,7 @@ impl IoError {
             | Self::NonFinite { at, .. }
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
+            | Self::ExternalBuffer { at, .. }
             | Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }
@@ -222,6 +235,7 @@ impl IoError {
             | Self::NonFinite { at, .. }
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
+            | Self::ExternalBuffer { at, .. }
             | Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }

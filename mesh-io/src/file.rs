@@ -55,7 +55,8 @@ pub fn read_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<MeshDa
         None => Format::from_path(path)?,
     };
     let bytes = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
-    let dir = path.parent().unwrap_or(Path::new("."));
+    // glTF external buffers are looked up in the named file's folder only.
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     read_bytes(&bytes, format, options, Some(dir)).map_err(|e| e.with_path(path))
 }
 

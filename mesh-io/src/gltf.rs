@@ -117,11 +117,14 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>)> {
     Ok((json, bin))
 }
 
-/// The data of every buffer, checked against its declared length.
+/// The data of every buffer, cut to its declared `byteLength` and refused
+/// when shorter: the GLB `BIN` chunk, a base64 `data:` URI, or a file inside
+/// `base_dir` ([`external_buffer`]).
 fn load_buffers<'a>(root: &json::Root, bin: Option<&'a [u8]>, base_dir: Option<&Path>) -> Result<Vec<Cow<'a, [u8]>>> {
     let mut out = Vec::with_capacity(root.buffers.len());
     for (i, buffer) in root.buffers.iter().enumerate() {
-        let data: Cow<'a, [u8]> =
+        let length = buffer.byte_length.0;
+        let mut data: Cow<'a, [u8]> =
             match buffer.uri.as_deref() {
                 None => Cow::Borrowed(
                     bin.ok_or_else(|| IoError::truncated(loc(), format!("the GLB BIN chunk of buffer {i}")))?,
@@ -135,24 +138,110 @@ fn load_buffers<'a>(root: &json::Root, bin: Option<&'a [u8]>, base_dir: Option<&
                     })?)
                 }
                 Some(uri) => {
-                    let dir = base_dir.ok_or_else(|| {
-                        IoError::unsupported(loc(), format!("external buffer `{uri}` when reading from memory"))
+                    let dir = base_dir.ok_or_else(|| IoError::ExternalBuffer {
+                        at: loc(),
+                        uri: uri.to_owned(),
+                        reason: "external buffer files cannot be resolved when reading from memory (no folder)".into(),
                     })?;
-                    let path = dir.join(percent_decode(uri));
-                    Cow::Owned(std::fs::read(&path).map_err(|e| IoError::io(&path, e))?)
+                    Cow::Owned(external_buffer(dir, uri, length)?)
                 }
             };
-        if (data.len() as u64) < buffer.byte_length.0 {
-            let e = format!("buffer {i} of {} bytes, found {}", buffer.byte_length.0, data.len());
+        if (data.len() as u64) < length {
+            let e = format!("buffer {i} of {length} bytes (its byteLength), found {}", data.len());
             return Err(IoError::truncated(loc(), e));
+        }
+        // Only the declared bytes: views beyond `byteLength` are refused.
+        match &mut data {
+            Cow::Borrowed(b) => *b = &b[..length as usize],
+            Cow::Owned(v) => v.truncate(length as usize),
         }
         out.push(data);
     }
     Ok(out)
 }
 
-/// Decodes `%XX` escapes of a relative URI.
-fn percent_decode(uri: &str) -> String {
+/// Reads the external buffer file `uri` of `byte_length` bytes, which must be
+/// a relative URI naming a regular file inside `dir` (the `.gltf` file's
+/// folder) once both are canonicalized (symbolic links resolved). Absolute
+/// paths, `..` components, other URI schemes, escapes out of the folder and
+/// devices, pipes or folders are refused with [`IoError::ExternalBuffer`]
+/// before anything is opened; the file's size is checked against
+/// `byte_length` first and at most `byte_length` bytes are read. Cost
+/// O(`byte_length`).
+fn external_buffer(dir: &Path, uri: &str, byte_length: u64) -> Result<Vec<u8>> {
+    let refuse = |path: Option<&Path>, reason: String| IoError::ExternalBuffer {
+        at: loc(),
+        uri: uri.to_owned(),
+        reason: match path {
+            Some(p) => format!("{}: {reason}", p.display()),
+            None => reason,
+        },
+    };
+    let relative = relative_uri_path(uri).map_err(|reason| refuse(None, reason.into()))?;
+    let folder = dir.canonicalize().map_err(|e| refuse(Some(dir), format!("the folder cannot be resolved: {e}")))?;
+    let named = folder.join(&relative);
+    let path = named.canonicalize().map_err(|e| refuse(Some(&named), format!("cannot be resolved: {e}")))?;
+    if !path.starts_with(&folder) {
+        let reason = format!("it resolves to {}, outside the folder {}", path.display(), folder.display());
+        return Err(refuse(Some(&path), reason));
+    }
+    let meta = std::fs::metadata(&path).map_err(|e| refuse(Some(&path), e.to_string()))?;
+    if !meta.is_file() {
+        return Err(refuse(Some(&path), "not a regular file (a folder, device or pipe)".into()));
+    }
+    if meta.len() < byte_length {
+        let reason = format!("the file has {} bytes, the buffer's byteLength is {byte_length}", meta.len());
+        return Err(refuse(Some(&path), reason));
+    }
+    let file = std::fs::File::open(&path).map_err(|e| IoError::io(&path, e))?;
+    // Capacity bounded by the file's real size, checked above.
+    let mut data = Vec::with_capacity(byte_length as usize);
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, byte_length), &mut data)
+        .map_err(|e| IoError::io(&path, e))?;
+    if (data.len() as u64) < byte_length {
+        let reason = format!("only {} of the buffer's {byte_length} bytes could be read", data.len());
+        return Err(refuse(Some(&path), reason));
+    }
+    Ok(data)
+}
+
+/// The relative path a buffer URI names, after `%XX` decoding; refused
+/// (with the reason) when it has a scheme, is absolute, climbs out with
+/// `..`, or decodes to something that is not a plain relative path.
+fn relative_uri_path(uri: &str) -> std::result::Result<std::path::PathBuf, &'static str> {
+    use std::path::Component;
+    if uri.is_empty() {
+        return Err("an empty URI");
+    }
+    let scheme = uri
+        .split_once(':')
+        .is_some_and(|(s, _)| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c)));
+    if scheme {
+        return Err("only data: URIs and relative paths are allowed");
+    }
+    let decoded = percent_decode(uri).ok_or("a %-escape that does not decode to UTF-8 text")?;
+    if decoded.contains(['\\', '\0']) || decoded.contains(':') {
+        return Err("a backslash, colon or NUL character in the path");
+    }
+    let path = Path::new(&decoded);
+    if path.is_absolute() || decoded.starts_with('/') {
+        return Err("an absolute path (only paths relative to the glTF file's folder are allowed)");
+    }
+    for component in path.components() {
+        match component {
+            Component::Normal(_) | Component::CurDir => {}
+            Component::ParentDir => {
+                return Err("a `..` component (the buffer must stay inside the glTF file's folder)")
+            }
+            Component::RootDir | Component::Prefix(_) => return Err("an absolute path"),
+        }
+    }
+    Ok(path.to_path_buf())
+}
+
+/// Decodes the `%XX` escapes of a relative URI; `None` when the result is
+/// not UTF-8.
+fn percent_decode(uri: &str) -> Option<String> {
     let b = uri.as_bytes();
     let mut out = Vec::with_capacity(b.len());
     let mut i = 0;
@@ -170,7 +259,7 @@ fn percent_decode(uri: &str) -> String {
             }
         }
     }
-    String::from_utf8_lossy(&out).into_owned()
+    String::from_utf8(out).ok()
 }
 
 const BASE64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -729,7 +818,7 @@ mod tests {
         }
         assert_eq!(base64_encode(b"Man"), "TWFu");
         assert!(base64_decode(b"a*b").is_none());
-        assert_eq!(percent_decode("my%20mesh.bin"), "my mesh.bin");
+        assert_eq!(percent_decode("my%20mesh.bin").as_deref(), Some("my mesh.bin"));
     }
 
     #[test]
