@@ -168,6 +168,21 @@ pub enum IoError {
         /// Why it is refused, naming the file it resolves to when it got that far.
         reason: String,
     },
+    /// A value the format stores as a 32-bit float would be lost: finite but
+    /// beyond the `f32` range, or non-zero but flushed to zero (see
+    /// [`crate::precision`]). [`crate::WriteOptions::allow_precision_loss`]
+    /// writes it anyway.
+    #[error("{at}: the {what} is {value:e}, which {problem}; write a format that stores 64-bit values (OBJ, OFF, PLY with double), rescale the mesh, or allow the loss")]
+    Precision {
+        /// Where (the format written).
+        at: Location,
+        /// The value, e.g. "position of vertex 12".
+        what: String,
+        /// The value in `f64`.
+        value: f64,
+        /// What would happen to it.
+        problem: &'static str,
+    },
     /// The glTF JSON is malformed or does not validate.
     #[error("{at}: {source}")]
     Gltf {
@@ -220,6 +235,7 @@ impl IoError {
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
             | Self::ExternalBuffer { at, .. }
+            | Self::Precision { at, .. }
             | Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }
@@ -236,6 +252,7 @@ impl IoError {
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
             | Self::ExternalBuffer { at, .. }
+            | Self::Precision { at, .. }
             | Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }

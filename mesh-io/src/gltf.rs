@@ -8,12 +8,15 @@
 //! concatenated without welding. Attributes kept: `NORMAL`, `TEXCOORD_0` (v
 //! flipped to the OBJ/PLY convention `v = 1 - v_gltf`), `COLOR_0`, and
 //! application-specific scalar attributes `_NAME` as scalars `NAME`; an
-//! attribute is kept only when every primitive has it. Buffers come from the
+//! attribute is kept only when every primitive has it. A scene with no
+//! triangle primitive reads its `POINTS` primitives as vertices without
+//! faces (what the writer makes of a mesh without faces). Buffers come from the
 //! GLB `BIN` chunk, `data:` URIs, or files next to the `.gltf` (given a base
 //! directory). Points, lines, morph targets, skins, materials and textures
 //! are not read; sparse accessors are refused.
 //!
-//! Writing produces one mesh with one triangle primitive: `POSITION`,
+//! Writing produces one mesh with one triangle primitive (a `POINTS`
+//! primitive when the mesh has no faces): `POSITION`,
 //! `NORMAL`, `TEXCOORD_0`, `COLOR_0` and `_NAME` scalars as `f32`, `u32`
 //! indices. glTF stores one texture coordinate per vertex, so vertices with
 //! several corner UVs are split. JSON parsing and validation use the `gltf`
@@ -60,14 +63,25 @@ pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<MeshData> {
     // enumeration is checked here where it is used instead.
     let root = json::Root::from_slice(json).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
     let buffers = load_buffers(&root, bin, base_dir)?;
-    let mut parts = Parts::default();
-    for (mesh, transform) in mesh_instances(&root)? {
+    let instances = mesh_instances(&root)?;
+    let mut parts = Parts { points: !has_triangles(&root, &instances), ..Parts::default() };
+    for (mesh, transform) in instances {
         let mesh = root.meshes.get(mesh).ok_or_else(|| index_error("a mesh", mesh))?;
         for primitive in &mesh.primitives {
             parts.add(&root, &buffers, primitive, transform)?;
         }
     }
     parts.finish()
+}
+
+/// Whether any instanced mesh has a triangle primitive.
+fn has_triangles(root: &json::Root, instances: &[(usize, DMat4)]) -> bool {
+    use json::mesh::Mode;
+    instances
+        .iter()
+        .filter_map(|&(m, _)| root.meshes.get(m))
+        .flat_map(|m| &m.primitives)
+        .any(|p| matches!(p.mode, Checked::Valid(Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan)))
 }
 
 fn index_error(expected: &str, index: usize) -> IoError {
@@ -446,6 +460,10 @@ struct Parts {
     colors: Option<Vec<[f32; 4]>>,
     scalars: Vec<(String, Vec<f64>)>,
     primitives: usize,
+    /// Read `POINTS` primitives as vertices without faces (when the scene
+    /// has no triangle primitive: a point set, as [`write_glb`] writes a mesh
+    /// without faces).
+    points: bool,
     report: ReadReport,
 }
 
@@ -460,7 +478,8 @@ impl Parts {
             p.attributes.get(&Checked::Valid(s.clone())).map(|a| accessor(root, buffers, a.value(), dims)).transpose()
         };
         let triangles = matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan);
-        let (Some(xyz), true) = (get(&Semantic::Positions, &[3])?, triangles) else {
+        let points = mode == Mode::Points && self.points;
+        let (Some(xyz), true) = (get(&Semantic::Positions, &[3])?, triangles || points) else {
             self.report.note("primitives that are not triangles, or have no positions, skipped");
             return Ok(());
         };
@@ -472,8 +491,10 @@ impl Parts {
             }
             self.positions.push(p);
         }
-        let indices = p.indices.map(|i| accessor(root, buffers, i.value(), &[1])).transpose()?;
-        self.triangles(mode, indices.as_ref(), nv, base, m.determinant() < 0.0)?;
+        if triangles {
+            let indices = p.indices.map(|i| accessor(root, buffers, i.value(), &[1])).transpose()?;
+            self.triangles(mode, indices.as_ref(), nv, base, m.determinant() < 0.0)?;
+        }
         self.attributes(p, &get, nv, m)?;
         self.primitives += 1;
         Ok(())

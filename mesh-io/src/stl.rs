@@ -134,9 +134,22 @@ fn read_ascii(bytes: &[u8]) -> Result<(Vec<DVec3>, ReadReport)> {
     Ok((corners, ReadReport::default()))
 }
 
-/// Writes an STL. Only positions are stored. Cost O(F).
+/// Writes an STL. Only positions are stored, as the corners of each
+/// triangle (vertices no face uses are left out). Cost O(F).
+///
+/// # Errors
+/// [`IoError::Unsupported`] for a mesh with vertices but no faces (STL
+/// cannot hold vertices without triangles) or more than 2^32 triangles;
+/// [`IoError::AttributeLength`] from [`MeshView::check`]; [`IoError::Io`].
 pub fn write<W: Write>(out: W, view: &MeshView<'_>, encoding: StlEncoding) -> Result<()> {
     view.check()?;
+    if view.mesh.face_count() == 0 && view.mesh.vertex_count() > 0 {
+        let what = format!(
+            "{} vertices without faces: STL stores triangles only (write PLY, OBJ, OFF or glTF instead)",
+            view.mesh.vertex_count()
+        );
+        return Err(IoError::unsupported(Location::new(Format::Stl), what));
+    }
     match encoding {
         StlEncoding::Ascii => write_ascii(out, view),
         StlEncoding::Binary => write_binary(out, view),
