@@ -4,6 +4,7 @@
 //! struct (clap) and a `run` function; this file only lists them.
 
 mod commands;
+mod errors;
 mod input;
 mod output;
 mod render;

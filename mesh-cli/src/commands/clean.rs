@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use mesh_core::clean::{CleanOptions, CleanReport};
 use serde::Serialize;
 
-use crate::output::{check_not_input, ensure_parent, print_json, CliResult};
+use crate::input::read_mesh;
+use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
 
 /// Arguments of `mesh clean`.
 #[derive(Debug, clap::Args)]
@@ -28,6 +29,8 @@ pub struct Args {
     /// Allow the output to be the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -75,8 +78,8 @@ impl Summary {
 
 /// Runs `mesh clean`.
 pub fn run(args: &Args) -> CliResult<()> {
-    check_not_input(&args.output, Some(&args.input), args.force)?;
-    let data = mesh_io::read(&args.input)?;
+    check_output(&args.output, Some(&args.input), args.force)?;
+    let data = read_mesh(&args.input)?;
     let options = CleanOptions {
         weld_tolerance: Some(args.weld),
         manifold: args.manifold,
@@ -84,8 +87,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         ..CleanOptions::default()
     };
     let (mesh, report) = data.mesh.cleaned(&options)?;
-    ensure_parent(&args.output)?;
-    mesh_io::write(&args.output, &mesh, &mesh_io::WriteOptions::default())?;
+    write_mesh(&args.output, &mesh, &args.write.options(Default::default()))?;
     let summary = Summary::new(&report, &mesh);
     if args.json {
         print_json(&summary)

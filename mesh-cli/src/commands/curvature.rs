@@ -16,7 +16,7 @@ use mesh_io::MeshView;
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
 /// Arguments of `mesh curvature`.
 #[derive(Debug, clap::Args)]
@@ -218,7 +218,7 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
         other => return Err(format!("unknown --area `{other}`; known: mixed, barycentric").into()),
     };
     let options = PointwiseOptions { tensor, area, resolution: args.resolution };
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let start = Instant::now();
@@ -258,8 +258,8 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
         .with_scalar("valid", &valid)
         .with_scalar("flag", &flag)
         .with_scalar("flag_discrete", &flag_discrete);
-    ensure_parent(&args.out)?;
-    mesh_io::write(&args.out, view, &binary_ply())?;
+    check_folder(&args.out)?;
+    write_mesh(&args.out, view, &binary_ply())?;
 
     let trusted = |i: usize| c.flag[i].is_none();
     let trusted_discrete = |i: usize| c.flag_discrete[i].is_none();

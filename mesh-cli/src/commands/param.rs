@@ -19,7 +19,7 @@ use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSumma
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
 /// Arguments of `mesh param`.
 #[derive(Debug, clap::Args)]
@@ -327,7 +327,7 @@ pub(crate) fn summarize(cleaning: Cleaning, method: &Method, atlas: &Atlas, per_
 fn execute(args: &Args) -> CliResult<Summary> {
     let options = options(args)?;
     let mode: CleanMode = args.clean.parse()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let (vertices, faces) = (data.mesh.vertex_count(), data.mesh.face_count());
     let start = Instant::now();
@@ -339,9 +339,9 @@ fn execute(args: &Args) -> CliResult<Summary> {
         Some(uv) => MeshView::new(&mesh).with_uvs(uv),
         None => MeshView::new(&mesh).with_corner_uvs(&a.corner_uvs),
     };
-    ensure_parent(&args.out)?;
+    check_folder(&args.out)?;
     let write = mesh_io::WriteOptions { format: Some(mesh_io::Format::Obj), ..Default::default() };
-    mesh_io::write(&args.out, view, &write)?;
+    write_mesh(&args.out, view, &write)?;
     Ok(Summary {
         input: args.input.describe(),
         output: args.out.display().to_string(),

@@ -15,7 +15,7 @@ use mesh_wavelet::{decay_rate, subdivide, CompressOptions, Multiresolution, Opti
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
 
 /// Arguments of `mesh subdivide`.
 #[derive(Debug, clap::Args)]
@@ -37,6 +37,8 @@ pub struct SubdivideArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 /// What `mesh subdivide --json` prints.
@@ -65,12 +67,12 @@ pub struct SubdivideSummary {
 /// Runs `mesh subdivide`.
 pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
     let scheme: Scheme = args.scheme.parse()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let start = Instant::now();
     let fine = subdivide(&data.mesh, scheme, args.levels)?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
-    write_mesh(&args.out, &fine)?;
+    write_mesh(&args.out, &fine, &args.write.options(Default::default()))?;
     let summary = SubdivideSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -166,6 +168,8 @@ struct CompressArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -186,6 +190,8 @@ struct LodArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 /// Coefficient magnitudes of one level.
@@ -342,12 +348,12 @@ fn analyze(args: &AnalyzeArgs) -> CliResult<AnalyzeSummary> {
 
 fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
     let options = args.bank.options()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
     let c = mr.compress(&CompressOptions { keep: args.keep })?;
     let out = c.multiresolution.synthesize()?;
-    write_mesh(&args.out, &out)?;
+    write_mesh(&args.out, &out, &args.write.options(Default::default()))?;
     Ok(CompressSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -362,11 +368,11 @@ fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
 
 fn lod(args: &LodArgs) -> CliResult<LodSummary> {
     let options = args.bank.options()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
     let mesh = mr.level(args.level)?;
-    write_mesh(&args.out, &mesh)?;
+    write_mesh(&args.out, &mesh, &args.write.options(Default::default()))?;
     Ok(LodSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -375,12 +381,6 @@ fn lod(args: &LodArgs) -> CliResult<LodSummary> {
         vertices: mesh.vertex_count(),
         faces: mesh.face_count(),
     })
-}
-
-fn write_mesh(path: &std::path::Path, mesh: &TriMesh) -> CliResult<()> {
-    ensure_parent(path)?;
-    mesh_io::write(path, mesh, &mesh_io::WriteOptions::default())?;
-    Ok(())
 }
 
 fn max_distance(a: &TriMesh, b: &TriMesh) -> f64 {
