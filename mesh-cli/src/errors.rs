@@ -15,3 +15,13 @@ pub fn io(e: IoError) -> CliError {
         _ => e.into(),
     }
 }
+
+/// A number as a user would type it: plain for ordinary magnitudes,
+/// scientific (`1e300`) otherwise.
+pub fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use mesh_core::clean::{CleanOptions, CleanReport};
 use serde::Serialize;
 
+use crate::errors::number;
 use crate::input::read_mesh;
 use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
 
@@ -15,8 +16,9 @@ pub struct Args {
     input: PathBuf,
     /// Output mesh file.
     output: PathBuf,
-    /// Weld vertices closer than this distance (default: identical positions only).
-    #[arg(long, default_value_t = 0.0)]
+    /// Weld vertices closer than this distance (default: identical positions
+    /// only); at most the bounding box diagonal.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     weld: f64,
     /// Make the result an oriented manifold: edges with three or more faces
     /// keep their best-continuing pair and detach the others, unorientable
@@ -76,10 +78,33 @@ impl Summary {
     }
 }
 
+/// Refuses a `--weld` distance that is negative, not a number, or larger
+/// than the bounding box diagonal (which would merge every vertex into one
+/// and leave no face).
+fn check_weld(weld: f64, mesh: &mesh_core::TriMesh, input: &std::path::Path) -> CliResult<()> {
+    if !(weld.is_finite() && weld >= 0.0) {
+        let weld = number(weld);
+        return Err(format!("--weld {weld}: give a distance >= 0 (0 welds identical positions only)").into());
+    }
+    let diagonal = mesh_core::geometry::bounding_box(mesh).map_or(0.0, |b| b.diagonal());
+    if weld > 0.0 && weld > diagonal {
+        return Err(format!(
+            "--weld {} is larger than the bounding box diagonal of {} ({}): it would merge every vertex into one; \
+             give a distance well below the diagonal (for a scan, about 1e-6 of it)",
+            number(weld),
+            input.display(),
+            number(diagonal)
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// Runs `mesh clean`.
 pub fn run(args: &Args) -> CliResult<()> {
     check_output(&args.output, Some(&args.input), args.force)?;
     let data = read_mesh(&args.input)?;
+    check_weld(args.weld, &data.mesh, &args.input)?;
     let options = CleanOptions {
         weld_tolerance: Some(args.weld),
         manifold: args.manifold,

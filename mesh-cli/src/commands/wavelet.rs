@@ -56,6 +56,9 @@ pub struct SubdivideSummary {
     pub input_vertices: usize,
     /// Input face count.
     pub input_faces: usize,
+    /// Input vertices no face used, dropped before subdividing (the output
+    /// then has subdivision connectivity, which `mesh wavelet` needs).
+    pub unreferenced_vertices_dropped: usize,
     /// Output vertex count.
     pub vertices: usize,
     /// Output face count.
@@ -69,8 +72,9 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
     let scheme: Scheme = args.scheme.parse()?;
     check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
+    let (mesh, dropped) = drop_unreferenced(&data.mesh)?;
     let start = Instant::now();
-    let fine = subdivide(&data.mesh, scheme, args.levels)?;
+    let fine = subdivide(&mesh, scheme, args.levels)?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
     write_mesh(&args.out, &fine, &args.write.options(Default::default()))?;
     let summary = SubdivideSummary {
@@ -80,6 +84,7 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
         levels: args.levels,
         input_vertices: data.mesh.vertex_count(),
         input_faces: data.mesh.face_count(),
+        unreferenced_vertices_dropped: dropped,
         vertices: fine.vertex_count(),
         faces: fine.face_count(),
         time_ms,
@@ -87,11 +92,33 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
     if args.json {
         return print_json(&summary);
     }
+    if dropped > 0 {
+        eprintln!("dropped {dropped} unreferenced vertices of the input (no face uses them)");
+    }
     eprintln!(
         "wrote {} ({} {} level(s): {} vertices, {} faces, {:.1} ms)",
         summary.output, summary.scheme, summary.levels, summary.vertices, summary.faces, time_ms
     );
     Ok(())
+}
+
+/// The mesh without the vertices no face uses (the others renumbered in
+/// order), and how many were dropped. Cost O(V + F).
+fn drop_unreferenced(mesh: &TriMesh) -> CliResult<(std::borrow::Cow<'_, TriMesh>, usize)> {
+    if mesh_core::clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).is_empty() {
+        return Ok((std::borrow::Cow::Borrowed(mesh), 0));
+    }
+    let only_unreferenced = mesh_core::clean::CleanOptions {
+        weld_tolerance: None,
+        drop_degenerate: false,
+        drop_duplicates: false,
+        drop_unreferenced: true,
+        manifold: false,
+        orient: false,
+        ..Default::default()
+    };
+    let (compact, report) = mesh.cleaned(&only_unreferenced)?;
+    Ok((std::borrow::Cow::Owned(compact), report.unreferenced_vertices))
 }
 
 /// Arguments of `mesh wavelet`.
