@@ -50,6 +50,22 @@ enum Command {
     Wavelet(commands::wavelet::Args),
 }
 
+impl Command {
+    /// The library options this command line set, with the flags as typed
+    /// (see [`errors::Given`]).
+    fn given(&self) -> Vec<(&'static str, String)> {
+        match self {
+            Command::Geodesic(args) => args.given(),
+            Command::Param(args) => args.given(),
+            Command::Spectral(args) => args.given(),
+            Command::Subdivide(args) => args.given(),
+            Command::Wavelet(args) => args.given(),
+            Command::Curvature(args) => args.given(),
+            _ => Vec::new(),
+        }
+    }
+}
+
 /// Exits quietly when standard output is closed early (`mesh info | head`):
 /// `println!` panics on a broken pipe, which here is not an error.
 fn exit_quietly_on_broken_pipe() {
@@ -87,6 +103,7 @@ fn main() {
         Command::Wavelet(args) => commands::wavelet::run(args),
     };
     if let Err(e) = result {
+        let e = errors::translate(e, &cli.command.given());
         eprintln!("mesh: error: {e}");
         std::process::exit(1);
     }

@@ -323,6 +323,21 @@ fn print_text(s: &Summary) {
     println!("  wrote              {}", s.output);
 }
 
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        let mut given = Vec::new();
+        if let Some(r) = self.radius {
+            given.push(("radius", flag("--radius", number(r))));
+        }
+        if let Some(n) = self.rings {
+            given.push(("rings", flag("--rings", n)));
+        }
+        given
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

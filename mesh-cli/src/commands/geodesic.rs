@@ -322,6 +322,18 @@ fn print_text(s: &Summary) {
     println!("  wrote              {}", s.output);
 }
 
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        vec![
+            ("laplacian", flag("--laplacian", &self.laplacian)),
+            ("time_factor", flag("--time-factor", number(self.time_factor))),
+            ("far_field", flag("--far-field", &self.far_field)),
+        ]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -438,6 +438,31 @@ fn print_text(s: &Summary) {
     println!("  wrote              {}", s.output);
 }
 
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    /// The boundary counts as given only when it is not the default circle
+    /// (which no mesh makes fail by the user's choice).
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        let mut given = vec![
+            ("method", flag("--method", &self.method)),
+            ("margin", flag("--margin", number(self.margin))),
+            ("iterations", flag("--iterations", self.iterations)),
+            ("lambda/mu", format!("--lambda {} --mu {}", number(self.lambda), number(self.mu))),
+        ];
+        if self.boundary != "circle" {
+            given.push(("boundary", flag("--boundary", &self.boundary)));
+        }
+        if let Some(n) = self.max_chart_faces {
+            given.push(("max_chart_faces", flag("--max-chart-faces", n)));
+        }
+        if let Some(d) = self.max_area_distortion {
+            given.push(("max_area_distortion", flag("--max-area-distortion", number(d))));
+        }
+        given
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

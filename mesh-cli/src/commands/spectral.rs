@@ -545,6 +545,37 @@ fn run_hks(args: &HksArgs) -> CliResult<()> {
     Ok(())
 }
 
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        let operator = |o: &OperatorArgs| ("tolerance", flag("--tolerance", number(o.tolerance)));
+        match &self.command {
+            None => vec![
+                ("k", flag("--k", self.eigen.k)),
+                ("component", flag("--component", &self.eigen.component)),
+                operator(&self.eigen.operator),
+            ],
+            Some(SpectralCommand::Filter(a)) => {
+                let mut given = vec![("k", flag("--keep", a.keep)), operator(&a.operator)];
+                if let Some(g) = a.gain {
+                    given.push(("gain", flag("--gain", number(g))));
+                }
+                given
+            }
+            Some(SpectralCommand::Compress(a)) => {
+                vec![("k", flag("--keep", a.keep)), ("keep", flag("--keep", a.keep)), operator(&a.operator)]
+            }
+            Some(SpectralCommand::Hks(a)) => vec![
+                ("k", flag("--k", a.k)),
+                ("count", flag("--times", a.times)),
+                ("times", flag("--times", a.times)),
+                operator(&a.operator),
+            ],
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

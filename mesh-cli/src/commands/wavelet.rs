@@ -438,6 +438,32 @@ fn print_analysis(s: &AnalyzeSummary) {
     println!("  time               {:.1} ms", s.time_ms);
 }
 
+impl SubdivideArgs {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::flag;
+        vec![("levels", flag("--levels", self.levels)), ("scheme", flag("--scheme", &self.scheme))]
+    }
+}
+
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::flag;
+        let (bank, mut given) = match &self.command {
+            WaveletCommand::Analyze(a) => (&a.bank, Vec::new()),
+            WaveletCommand::Compress(a) => (&a.bank, vec![("keep", flag("--keep", a.keep))]),
+            WaveletCommand::Lod(a) => (&a.bank, vec![("level", flag("--level", a.level))]),
+        };
+        given.push(("scheme", flag("--scheme", &bank.scheme)));
+        given.push(("wavelet", flag("--wavelet", &bank.wavelet)));
+        if let Some(n) = bank.max_levels {
+            given.push(("max_levels", flag("--max-levels", n)));
+        }
+        given
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
