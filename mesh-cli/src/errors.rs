@@ -23,35 +23,46 @@ pub fn flag(name: &str, value: impl std::fmt::Display) -> String {
 }
 
 /// Any error a command returned, in command-line terms: errors of the
-/// library crates are recognized by type and rewritten; others (already in
+/// library crates are recognized by type, rewritten, and prefixed with the
+/// input file (mesh-io errors name it already); others (already in
 /// command-line terms) pass unchanged.
-pub fn translate(e: CliError, given: Given<'_>) -> CliError {
+pub fn translate(e: CliError, given: Given<'_>, input: Option<&std::path::Path>) -> CliError {
+    let on_file = |e: CliError| -> CliError {
+        match input {
+            Some(file) => format!("{}: {e}", file.display()).into(),
+            None => e,
+        }
+    };
+    library(e, given, on_file)
+}
+
+fn library(e: CliError, given: Given<'_>, on_file: impl Fn(CliError) -> CliError) -> CliError {
     let e = match e.downcast::<IoError>() {
         Ok(e) => return io(*e),
         Err(e) => e,
     };
     let e = match e.downcast::<mesh_core::MeshError>() {
-        Ok(e) => return core(*e, given),
+        Ok(e) => return on_file(core(*e, given)),
         Err(e) => e,
     };
     let e = match e.downcast::<mesh_geodesic::GeodesicError>() {
-        Ok(e) => return geodesic(*e, given),
+        Ok(e) => return on_file(geodesic(*e, given)),
         Err(e) => e,
     };
     let e = match e.downcast::<mesh_param::ParamError>() {
-        Ok(e) => return param(*e, given),
+        Ok(e) => return on_file(param(*e, given)),
         Err(e) => e,
     };
     let e = match e.downcast::<mesh_spectral::SpectralError>() {
-        Ok(e) => return spectral(*e, given),
+        Ok(e) => return on_file(spectral(*e, given)),
         Err(e) => e,
     };
     let e = match e.downcast::<mesh_curvature::CurvatureError>() {
-        Ok(e) => return curvature(*e, given),
+        Ok(e) => return on_file(curvature(*e, given)),
         Err(e) => e,
     };
     match e.downcast::<mesh_wavelet::WaveletError>() {
-        Ok(e) => wavelet(*e, given),
+        Ok(e) => on_file(wavelet(*e, given)),
         Err(e) => e,
     }
 }

@@ -51,6 +51,24 @@ enum Command {
 }
 
 impl Command {
+    /// The mesh file the command read, if any (errors name it).
+    fn input_file(&self) -> Option<&std::path::Path> {
+        match self {
+            Command::Info(a) => a.input.path(),
+            Command::Convert(a) => Some(&a.input),
+            Command::Clean(a) => Some(&a.input),
+            Command::Render(a) => a.input.path(),
+            Command::Report(a) => a.input.path(),
+            Command::Curvature(a) => a.input.path(),
+            Command::Param(a) => a.input.path(),
+            Command::Geodesic(a) => a.input.path(),
+            Command::Spectral(a) => a.input_file(),
+            Command::Subdivide(a) => a.input_file(),
+            Command::Wavelet(a) => a.input_file(),
+            Command::Generate(_) | Command::Nurbs(_) => None,
+        }
+    }
+
     /// The library options this command line set, with the flags as typed
     /// (see [`errors::Given`]).
     fn given(&self) -> Vec<(&'static str, String)> {
@@ -103,7 +121,7 @@ fn main() {
         Command::Wavelet(args) => commands::wavelet::run(args),
     };
     if let Err(e) = result {
-        let e = errors::translate(e, &cli.command.given());
+        let e = errors::translate(e, &cli.command.given(), cli.command.input_file());
         eprintln!("mesh: error: {e}");
         std::process::exit(1);
     }

@@ -13,7 +13,7 @@ use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Input mesh file.
-    input: PathBuf,
+    pub(crate) input: PathBuf,
     /// Output mesh file.
     output: PathBuf,
     /// Weld vertices closer than this distance (default: identical positions

@@ -10,7 +10,7 @@ use crate::output::{check_output, write_mesh, CliResult, WriteArgs};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Input mesh file.
-    input: PathBuf,
+    pub(crate) input: PathBuf,
     /// Output mesh file; the format comes from its extension.
     output: PathBuf,
     /// Allow the output to be the input file.

@@ -22,7 +22,7 @@ use crate::output::{binary_ply, check_folder, check_output, finite, print_json, 
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output PLY file: positions as double and per-vertex double properties
     /// gaussian mean (from the tensor) k1 k2 d1x d1y d1z d2x d2y d2z
     /// shape_index curvedness gaussian_discrete mean_discrete

@@ -27,7 +27,7 @@ use crate::output::{binary_ply, check_folder, check_output, finite, print_json, 
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Source vertices, comma separated (e.g. 0,17,42).
     #[arg(long, value_name = "V[,V...]", value_delimiter = ',', required = true)]
     source: Vec<u32>,

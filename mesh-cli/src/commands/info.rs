@@ -10,7 +10,7 @@ use crate::output::{finite, print_json, CliResult};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,

@@ -25,7 +25,7 @@ use crate::output::{check_folder, check_output, finite, print_json, write_mesh, 
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output OBJ file with one `vt` per vertex (per corner along seams).
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,

@@ -11,7 +11,7 @@ use crate::render::{render_png, RenderOptions};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output PNG file.
     #[arg(long)]
     out: PathBuf,

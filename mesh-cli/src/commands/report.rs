@@ -26,7 +26,7 @@ use crate::render::{render_png, RenderOptions};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output folder (created if needed).
     #[arg(long, default_value = "out")]
     out: PathBuf,

@@ -546,6 +546,16 @@ fn run_hks(args: &HksArgs) -> CliResult<()> {
 }
 
 impl Args {
+    /// The input file, if any.
+    pub fn input_file(&self) -> Option<&std::path::Path> {
+        match &self.command {
+            None => self.eigen.input.path(),
+            Some(SpectralCommand::Filter(a)) => a.input.path(),
+            Some(SpectralCommand::Compress(a)) => a.input.path(),
+            Some(SpectralCommand::Hks(a)) => a.input.path(),
+        }
+    }
+
     /// The library options set from flags, for [`crate::errors::translate`].
     pub fn given(&self) -> Vec<(&'static str, String)> {
         use crate::errors::{flag, number};

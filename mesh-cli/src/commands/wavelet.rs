@@ -439,6 +439,11 @@ fn print_analysis(s: &AnalyzeSummary) {
 }
 
 impl SubdivideArgs {
+    /// The input file, if any.
+    pub fn input_file(&self) -> Option<&std::path::Path> {
+        self.input.path()
+    }
+
     /// The library options set from flags, for [`crate::errors::translate`].
     pub fn given(&self) -> Vec<(&'static str, String)> {
         use crate::errors::flag;
@@ -447,6 +452,15 @@ impl SubdivideArgs {
 }
 
 impl Args {
+    /// The input file, if any.
+    pub fn input_file(&self) -> Option<&std::path::Path> {
+        match &self.command {
+            WaveletCommand::Analyze(a) => a.input.path(),
+            WaveletCommand::Compress(a) => a.input.path(),
+            WaveletCommand::Lod(a) => a.input.path(),
+        }
+    }
+
     /// The library options set from flags, for [`crate::errors::translate`].
     pub fn given(&self) -> Vec<(&'static str, String)> {
         use crate::errors::flag;
