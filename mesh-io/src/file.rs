@@ -48,6 +48,9 @@ pub struct WriteOptions {
 
 /// Reads a mesh file with default options; the format comes from the
 /// extension (case-insensitive). The whole file is read into memory first.
+///
+/// # Errors
+/// As [`read_with`].
 pub fn read(path: impl AsRef<Path>) -> Result<MeshData> {
     read_with(path, &ReadOptions::default())
 }
@@ -80,6 +83,13 @@ pub fn read_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<MeshDa
 
 /// Reads a mesh of the given format from memory (glTF buffers in external
 /// files cannot be resolved here).
+///
+/// # Errors
+/// The errors of the format's reader: `IoError::WrongMagic`, `IoError::Syntax`, `IoError::Truncated`,
+/// `IoError::Count` (a header count the data cannot hold), `IoError::Index` (a face naming a missing vertex),
+/// `IoError::NonFinite`, `IoError::Unsupported`, `IoError::Mesh` (the faces do not make a valid `TriMesh`),
+/// `IoError::Gltf` (invalid glTF JSON) and `IoError::ExternalBuffer` (a glTF buffer in an external file:
+/// there is no folder to look in).
 pub fn read_from(bytes: &[u8], format: Format, options: &ReadOptions) -> Result<MeshData> {
     read_bytes(bytes, format, options, None)
 }
@@ -168,6 +178,10 @@ fn narrowed(format: Format, options: &WriteOptions) -> Narrowed {
 
 /// Writes polylines (for example geodesic paths) atomically as an OBJ file of
 /// `l` elements ([`obj::write_polylines`]).
+///
+/// # Errors
+/// `IoError::Io` when the file cannot be written (a missing folder included); the file is left untouched on
+/// error.
 pub fn write_polylines<P: AsRef<[DVec3]>>(path: impl AsRef<Path>, polylines: &[P]) -> Result<()> {
     let path = path.as_ref();
     write_atomic(path, |out| obj::write_polylines(out, polylines)).map_err(|e| e.with_path(path))

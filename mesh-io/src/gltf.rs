@@ -44,6 +44,9 @@ const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
 /// Checks that `bytes` start with the GLB magic `glTF`.
+///
+/// # Errors
+/// `IoError::WrongMagic` when the bytes do not start with `glTF`.
 pub fn check_glb_magic(bytes: &[u8]) -> Result<()> {
     if bytes.starts_with(GLB_MAGIC) {
         Ok(())
@@ -55,6 +58,16 @@ pub fn check_glb_magic(bytes: &[u8]) -> Result<()> {
 /// Reads glTF JSON or GLB from memory. External buffer files are looked up
 /// in `base_dir` (the `.gltf` file's directory); without one they are an
 /// [`IoError::Unsupported`]. Cost O(size).
+///
+/// # Errors
+/// `IoError::Gltf` for JSON that is not glTF; `IoError::Truncated` for a GLB container, chunk, buffer or
+/// accessor shorter than announced (GLB lengths are checked against the data, buffers against their
+/// byteLength, accessors against their buffer views); `IoError::ExternalBuffer` for a buffer URI that is not
+/// a data: URI or a relative path to a regular file inside `base_dir`, or a file shorter than byteLength (or
+/// any external buffer when `base_dir` is None); `IoError::Syntax` for an index (mesh, node, accessor, buffer
+/// view) out of range or a node hierarchy that is not a tree; `IoError::Unsupported` for sparse accessors,
+/// GLB versions other than 2 or non-base64 data URIs; `IoError::Index`, `IoError::NonFinite` and
+/// `IoError::Mesh` as for every reader.
 pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<MeshData> {
     let (json, bin) = if bytes.starts_with(GLB_MAGIC) { split_glb(bytes)? } else { (bytes, None) };
     // Not `gltf::Document::from_json`: its validation indexes accessors
@@ -605,6 +618,10 @@ fn corner_triples(mode: json::mesh::Mode, n: usize) -> Box<dyn Iterator<Item = [
 
 /// Writes a binary glTF (`.glb`): one mesh, one triangle primitive, `f32`
 /// attributes and `u32` indices in the `BIN` chunk. Cost O(size).
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Gltf` when the JSON cannot be serialized or
+/// written; values are narrowed to f32 without the check of [`crate::write_to`].
 pub fn write_glb<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
     let (root, bin) = document(view, false)?;
     let json = json::serialize::to_vec(&root).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
@@ -615,6 +632,10 @@ pub fn write_glb<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
 
 /// Writes glTF JSON (`.gltf`) with the buffer embedded as a base64 `data:`
 /// URI, so the file stands alone. Cost O(size).
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Gltf` when the JSON cannot be serialized;
+/// `IoError::Io` when `out` fails. Values are narrowed to f32 without the check of [`crate::write_to`].
 pub fn write_gltf<W: Write>(mut out: W, view: &MeshView<'_>) -> Result<()> {
     let (root, _) = document(view, true)?;
     let json = json::serialize::to_vec(&root).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;

@@ -43,6 +43,12 @@ fn triangle_count(bytes: &[u8]) -> Option<u32> {
 /// Reads an ascii or binary STL from memory, welding corners within
 /// `weld_tolerance` (`Some(0.0)`: identical positions; `None`: no welding,
 /// three vertices per triangle). Cost O(n log n) for `n` triangles.
+///
+/// # Errors
+/// `IoError::Truncated` for a binary STL shorter than its triangle count says, or an ascii STL without
+/// `endfacet`/`endsolid`; `IoError::Syntax` for an ascii keyword or number that is not STL, or a facet
+/// without 3 vertices; `IoError::NonFinite` for a NaN or infinite corner; `IoError::Mesh` for a negative
+/// `weld_tolerance` (mesh-core's welding refuses it) or faces that do not make a valid `TriMesh`.
 pub fn read(bytes: &[u8], weld_tolerance: Option<f64>) -> Result<MeshData> {
     let ascii =
         !is_binary(bytes) && bytes.trim_ascii_start().get(..5).is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
