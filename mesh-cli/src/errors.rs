@@ -78,9 +78,30 @@ pub fn io(e: IoError) -> CliError {
 /// An invalid-option error of any crate: quotes the flag when the user set
 /// the option, and otherwise says which internal step failed.
 fn option(name: &str, reason: &str, given: Given<'_>) -> CliError {
-    match given.iter().find(|(n, _)| *n == name) {
-        Some((_, typed)) => format!("{typed}: {reason}").into(),
-        None => format!("an internal step ({}) failed: {reason}", internal_step(name)).into(),
+    let Some((_, typed)) = given.iter().find(|(n, _)| *n == name) else {
+        return format!("an internal step ({}) failed: {reason}", internal_step(name)).into();
+    };
+    // A reason that starts with the value ("1e300 is larger than ...")
+    // reads on from the flag as typed, without the value printed twice.
+    let value = typed.rsplit(' ').next().and_then(|v| v.parse::<f64>().ok());
+    let (first, rest) = reason.split_once(' ').unwrap_or((reason, ""));
+    let message = match (value, first.parse::<f64>()) {
+        (Some(v), Ok(r)) if v == r || (v.is_nan() && r.is_nan()) => format!("{typed} {rest}"),
+        _ => format!("{typed}: {reason}"),
+    };
+    match hint(name) {
+        Some(hint) => format!("{message}; {hint}").into(),
+        None => message.into(),
+    }
+}
+
+/// What to do about a bad value of an option, when the reason alone does not say.
+fn hint(name: &str) -> Option<&'static str> {
+    match name {
+        "weld_tolerance" => {
+            Some("give a distance >= 0 and well below the bounding box diagonal (0 welds identical positions only)")
+        }
+        _ => None,
     }
 }
 

@@ -74,6 +74,7 @@ impl Command {
     fn given(&self) -> Vec<(&'static str, String)> {
         match self {
             Command::Geodesic(args) => args.given(),
+            Command::Clean(args) => args.given(),
             Command::Param(args) => args.given(),
             Command::Spectral(args) => args.given(),
             Command::Subdivide(args) => args.given(),

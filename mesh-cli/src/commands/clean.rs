@@ -5,7 +5,6 @@ use std::path::PathBuf;
 use mesh_core::clean::{CleanOptions, CleanReport};
 use serde::Serialize;
 
-use crate::errors::number;
 use crate::input::read_mesh;
 use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
 
@@ -78,33 +77,17 @@ impl Summary {
     }
 }
 
-/// Refuses a `--weld` distance that is negative, not a number, or larger
-/// than the bounding box diagonal (which would merge every vertex into one
-/// and leave no face).
-fn check_weld(weld: f64, mesh: &mesh_core::TriMesh, input: &std::path::Path) -> CliResult<()> {
-    if !(weld.is_finite() && weld >= 0.0) {
-        let weld = number(weld);
-        return Err(format!("--weld {weld}: give a distance >= 0 (0 welds identical positions only)").into());
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        vec![("weld_tolerance", crate::errors::flag("--weld", crate::errors::number(self.weld)))]
     }
-    let diagonal = mesh_core::geometry::bounding_box(mesh).map_or(0.0, |b| b.diagonal());
-    if weld > 0.0 && weld > diagonal {
-        return Err(format!(
-            "--weld {} is larger than the bounding box diagonal of {} ({}): it would merge every vertex into one; \
-             give a distance well below the diagonal (for a scan, about 1e-6 of it)",
-            number(weld),
-            input.display(),
-            number(diagonal)
-        )
-        .into());
-    }
-    Ok(())
 }
 
 /// Runs `mesh clean`.
 pub fn run(args: &Args) -> CliResult<()> {
     check_output(&args.output, Some(&args.input), args.force)?;
     let data = read_mesh(&args.input)?;
-    check_weld(args.weld, &data.mesh, &args.input)?;
     let options = CleanOptions {
         weld_tolerance: Some(args.weld),
         manifold: args.manifold,
