@@ -23,6 +23,18 @@ pub struct InputArgs {
     pub res: Option<usize>,
 }
 
+/// Reads a mesh file; every command reads through here, so that each one
+/// prints (on standard error) a one-line notice when the reader changed
+/// something: faces dropped, polygons triangulated, vertices welded, parts
+/// of the file not read.
+pub fn read_mesh(path: &Path) -> CliResult<MeshData> {
+    let data = mesh_io::read(path).map_err(crate::errors::io)?;
+    if !data.report.is_clean() {
+        eprintln!("mesh: note: reading {} changed the mesh: {}", path.display(), data.report);
+    }
+    Ok(data)
+}
+
 /// The default shape when neither a file nor a shape is given.
 pub const DEFAULT_SHAPE: &str = "icosphere";
 
@@ -30,7 +42,7 @@ impl InputArgs {
     /// Reads the file or builds the shape.
     pub fn load(&self) -> CliResult<MeshData> {
         match &self.file {
-            Some(path) => Ok(mesh_io::read(path)?),
+            Some(path) => read_mesh(path),
             None => {
                 let name = self.shape.as_deref().unwrap_or(DEFAULT_SHAPE);
                 let default_res = if name == "icosphere" { 4 } else { 32 };

@@ -4,6 +4,7 @@
 //! struct (clap) and a `run` function; this file only lists them.
 
 mod commands;
+mod errors;
 mod input;
 mod output;
 mod render;
@@ -49,6 +50,41 @@ enum Command {
     Wavelet(commands::wavelet::Args),
 }
 
+impl Command {
+    /// The mesh file the command read, if any (errors name it).
+    fn input_file(&self) -> Option<&std::path::Path> {
+        match self {
+            Command::Info(a) => a.input.path(),
+            Command::Convert(a) => Some(&a.input),
+            Command::Clean(a) => Some(&a.input),
+            Command::Render(a) => a.input.path(),
+            Command::Report(a) => a.input.path(),
+            Command::Curvature(a) => a.input.path(),
+            Command::Param(a) => a.input.path(),
+            Command::Geodesic(a) => a.input.path(),
+            Command::Spectral(a) => a.input_file(),
+            Command::Subdivide(a) => a.input_file(),
+            Command::Wavelet(a) => a.input_file(),
+            Command::Generate(_) | Command::Nurbs(_) => None,
+        }
+    }
+
+    /// The library options this command line set, with the flags as typed
+    /// (see [`errors::Given`]).
+    fn given(&self) -> Vec<(&'static str, String)> {
+        match self {
+            Command::Geodesic(args) => args.given(),
+            Command::Clean(args) => args.given(),
+            Command::Param(args) => args.given(),
+            Command::Spectral(args) => args.given(),
+            Command::Subdivide(args) => args.given(),
+            Command::Wavelet(args) => args.given(),
+            Command::Curvature(args) => args.given(),
+            _ => Vec::new(),
+        }
+    }
+}
+
 /// Exits quietly when standard output is closed early (`mesh info | head`):
 /// `println!` panics on a broken pipe, which here is not an error.
 fn exit_quietly_on_broken_pipe() {
@@ -86,6 +122,7 @@ fn main() {
         Command::Wavelet(args) => commands::wavelet::run(args),
     };
     if let Err(e) = result {
+        let e = errors::translate(e, &cli.command.given(), cli.command.input_file());
         eprintln!("mesh: error: {e}");
         std::process::exit(1);
     }

@@ -4,12 +4,18 @@ use std::path::Path;
 
 use serde::Serialize;
 
-/// Commands return any error; `main` prints it and exits with status 1.
-pub type CliResult<T> = Result<T, Box<dyn std::error::Error + Send + Sync>>;
+/// Any error a command returns; `main` prints it and exits with status 1.
+pub type CliError = Box<dyn std::error::Error + Send + Sync>;
 
-/// Refuses to write over the input file unless `force` is set (writes
-/// themselves are atomic: temporary file, then rename).
-pub fn check_not_input(out: &Path, input: Option<&Path>, force: bool) -> CliResult<()> {
+/// Commands return any error; `main` prints it and exits with status 1.
+pub type CliResult<T> = Result<T, CliError>;
+
+/// Checks an output path before any work is done: its folder must exist
+/// (no command creates folders for its outputs, except `mesh report` for
+/// its own `--out` folder), and it must not be the input file unless `force`
+/// is set (writes themselves are atomic: temporary file, then rename).
+pub fn check_output(out: &Path, input: Option<&Path>, force: bool) -> CliResult<()> {
+    check_folder(out)?;
     if force {
         return Ok(());
     }
@@ -27,14 +33,51 @@ pub fn check_not_input(out: &Path, input: Option<&Path>, force: bool) -> CliResu
     Ok(())
 }
 
-/// Creates the parent directory of `path` if needed.
-pub fn ensure_parent(path: &Path) -> CliResult<()> {
-    if let Some(dir) = path.parent() {
-        if !dir.as_os_str().is_empty() {
-            std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        }
+/// Refuses an output path whose folder does not exist.
+pub fn check_folder(out: &Path) -> CliResult<()> {
+    match out.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!(
+            "cannot write {}: the folder {} does not exist (create it first, e.g. `mkdir -p {}`)",
+            out.display(),
+            dir.display(),
+            dir.display()
+        )
+        .into()),
+        _ => Ok(()),
     }
-    Ok(())
+}
+
+/// The write option every command that writes a mesh file shares.
+#[derive(Debug, Clone, Copy, Default, clap::Args)]
+pub struct WriteArgs {
+    /// Write coordinates and attributes that a 32-bit float format (STL,
+    /// glTF/GLB, float PLY) cannot hold (they become infinite or zero)
+    /// instead of refusing.
+    #[arg(long)]
+    pub allow_precision_loss: bool,
+}
+
+impl WriteArgs {
+    /// `options` with this command line's choices.
+    pub fn options(&self, options: mesh_io::WriteOptions) -> mesh_io::WriteOptions {
+        mesh_io::WriteOptions { allow_precision_loss: self.allow_precision_loss, ..options }
+    }
+}
+
+/// Writes a mesh file (the folder must exist, see [`check_output`]) and
+/// prints a one-line warning on standard error when values stored as 32-bit
+/// floats were rounded by more than 1e-6 of the mesh's size or lost.
+pub fn write_mesh<'a>(
+    path: &Path,
+    data: impl Into<mesh_io::MeshView<'a>>,
+    options: &mesh_io::WriteOptions,
+) -> CliResult<mesh_io::WriteReport> {
+    check_folder(path)?;
+    let report = mesh_io::write(path, data, options).map_err(crate::errors::io)?;
+    if !report.is_clean() {
+        eprintln!("mesh: warning: {}: {report}", path.display());
+    }
+    Ok(report)
 }
 
 /// Prints a value as pretty JSON on standard output.
@@ -45,7 +88,7 @@ pub fn print_json<T: Serialize>(value: &T) -> CliResult<()> {
 
 /// Writes a value as pretty JSON to a file, atomically.
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> CliResult<()> {
-    ensure_parent(path)?;
+    check_folder(path)?;
     let text = serde_json::to_string_pretty(value)?;
     mesh_io::write_atomic(path, |w| w.write_all(text.as_bytes()).map_err(|e| mesh_io::IoError::io(path, e)))?;
     Ok(())

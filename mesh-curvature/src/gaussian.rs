@@ -57,6 +57,10 @@ impl GaussianCurvature {
 /// estimates. Cost O(V + F): two `atan2` per face (the third angle is
 /// `pi` minus the others, so each face's angles sum to pi exactly), in
 /// parallel over faces with the `rayon` feature.
+///
+/// # Errors
+/// None in practice for a valid `TriMesh` (the result type leaves room for `CurvatureError::Mesh` from
+/// mesh-core's geometry); unreliable vertices are flagged in the output, not refused.
 pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
     let (mesh, unit) = mesh_core::units::normalized(mesh);
     let mut k = angle_defect(&mesh, options)?;

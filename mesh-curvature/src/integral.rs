@@ -45,6 +45,10 @@ impl IntegralCurvature {
 /// vertex. A larger neighbourhood smooths noise at the cost of resolution;
 /// the integrals are finite on any mesh. Cost O(V + F) for the per-vertex
 /// quantities plus O(sum of neighbourhood sizes), parallel over vertices.
+///
+/// # Errors
+/// `CurvatureError::InvalidOption` (`rings`) for 0 rings or (`radius`) for a ball radius that is not finite
+/// and positive; the errors of [`crate::gaussian_curvature`] and [`crate::mean_curvature`].
 pub fn integral_curvature(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralCurvature> {
     let nbh = nbh.validate()?;
     let (mesh, unit) = mesh_core::units::normalized(mesh);

@@ -56,6 +56,10 @@ pub struct MeanCurvature {
 /// everywhere and [`MeanCurvature::status`] says which are estimates.
 /// Cost O(V + F): Laplacian assembly, one sparse product with the three
 /// coordinate columns (in parallel over rows with the `rayon` feature).
+///
+/// # Errors
+/// None in practice for a valid `TriMesh` (the result type leaves room for `CurvatureError::Mesh`); vertices
+/// where the estimate cannot be trusted are flagged in [`MeanCurvature::status`].
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
     let (mesh, unit) = mesh_core::units::normalized(mesh);
     let (normals, (lx, area)) =
@@ -71,6 +75,9 @@ pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurva
 ///
 /// Errors with [`CurvatureError::InvalidOption`] when `normals` does not
 /// hold one vector per vertex.
+///
+/// # Errors
+/// `CurvatureError::InvalidOption` (`normals`) when `normals` does not have one entry per vertex.
 pub fn mean_curvature_with_normals(mesh: &TriMesh, area: AreaKind, normals: &[DVec3]) -> Result<MeanCurvature> {
     if normals.len() != mesh.vertex_count() {
         return Err(CurvatureError::InvalidOption {

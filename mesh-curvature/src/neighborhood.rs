@@ -36,6 +36,10 @@ impl Neighborhood {
     }
 
     /// Checks the parameter.
+    ///
+    /// # Errors
+    /// `CurvatureError::InvalidOption` (`rings`) for 0 rings, (`radius`) for a radius that is not finite and
+    /// positive.
     pub fn validate(self) -> Result<Self> {
         match self {
             Self::Rings(0) => Err(CurvatureError::InvalidOption { name: "rings", reason: "must be at least 1".into() }),

@@ -257,6 +257,10 @@ impl PointwiseCurvature {
 ///
 /// Errors with [`CurvatureError::InvalidOption`] when `resolution` is not
 /// positive (or NaN), and as [`curvature_tensor`] does.
+///
+/// # Errors
+/// `CurvatureError::InvalidOption` (`resolution`) when `resolution` is not positive or is NaN; the errors of
+/// [`curvature_tensor`] and [`crate::mean_curvature_with_normals`].
 pub fn pointwise_curvature(mesh: &TriMesh, options: &PointwiseOptions) -> Result<PointwiseCurvature> {
     if options.resolution.is_nan() || options.resolution <= 0.0 {
         return Err(CurvatureError::InvalidOption {

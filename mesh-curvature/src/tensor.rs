@@ -152,6 +152,10 @@ pub fn curvedness(k1: f64, k2: f64) -> f64 {
 /// zeros, each flagged in [`CurvatureTensor::status`]; no value is NaN.
 /// Cost O(V + F) for [`Method::Rusinkiewicz`], O(sum of neighbourhood sizes)
 /// for the others; parallel over vertices with the `rayon` feature.
+///
+/// # Errors
+/// `CurvatureError::InvalidOption` (`rings` or `radius`) for an invalid neighbourhood of the normal-cycle
+/// method; the errors of the fitting method (`CurvatureError::Mesh` for geometry mesh-core refuses).
 pub fn curvature_tensor(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> {
     // Fits square and multiply coordinates: estimate in a unit where nothing
     // over- or underflows, then bring the curvatures (1 / length) back.

@@ -82,6 +82,10 @@ impl ShortestPaths {
 /// assert!(tree.distance[100] >= mesh.position(VertexId(0)).distance(mesh.position(VertexId(100))));
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// `GeodesicError::NoSources` for an empty `sources`; `GeodesicError::SourceOutOfRange` for a source that is
+/// not a vertex; `GeodesicError::InvalidOption` (`max_distance`) for a NaN or negative `max_distance`.
 pub fn dijkstra(mesh: &TriMesh, sources: &[VertexId], options: &DijkstraOptions) -> Result<ShortestPaths> {
     validate_sources(mesh, sources)?;
     if options.max_distance.is_nan() || options.max_distance < 0.0 {

@@ -79,6 +79,11 @@ const DEGENERATE: f64 = 1e-12;
 /// }
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// `GeodesicError::NoSources` / `GeodesicError::SourceOutOfRange` for bad sources; `GeodesicError::Mesh`
+/// (`MeshError::NonManifold`) when the mesh is not an oriented manifold, or (`MeshError::Degenerate`) for
+/// degenerate geometry; `GeodesicError::WorkLimit` past `ExactOptions::max_windows` windows.
 pub fn exact_distance(mesh: &TriMesh, sources: &[VertexId], options: &ExactOptions) -> Result<Vec<f64>> {
     validate_sources(mesh, sources)?;
     // Unfoldings square lengths: work in a unit where nothing overflows.

@@ -66,6 +66,10 @@ pub struct GeodesicVoronoi {
 /// assert_eq!((cells.region[0], cells.region[3]), (0, 1));
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// `GeodesicError::NoSources` / `GeodesicError::SourceOutOfRange` for bad seeds; the errors of the chosen
+/// metric (Fast Marching or Dijkstra).
 pub fn geodesic_voronoi(mesh: &TriMesh, seeds: &[VertexId], options: &SamplingOptions) -> Result<GeodesicVoronoi> {
     validate_sources(mesh, seeds)?;
     let (distance, region) = match options.metric {
@@ -99,6 +103,11 @@ pub fn geodesic_voronoi(mesh: &TriMesh, seeds: &[VertexId], options: &SamplingOp
 /// assert!(fps.radii.windows(2).all(|w| w[1] <= w[0]));
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// `GeodesicError::InvalidOption` (`count`) for a count of 0; `GeodesicError::SourceOutOfRange` for a first
+/// sample that is not a vertex; `GeodesicError::Mesh` (`MeshError::Empty`) when no vertex is usable; the
+/// errors of the chosen metric.
 pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingOptions) -> Result<GeodesicVoronoi> {
     if count == 0 {
         return Err(GeodesicError::InvalidOption { name: "count", reason: "at least one sample is needed".into() });

@@ -37,6 +37,10 @@ impl SurfacePoint {
     /// A validated surface point: the face must exist and the coordinates be
     /// finite, at least -1e-9 and sum to 1 within 1e-9 (they are clamped
     /// and renormalized).
+    ///
+    /// # Errors
+    /// `GeodesicError::InvalidSurfacePoint` when `face` is not a face of the mesh or `bary` is not a convex
+    /// combination (finite, non-negative, summing to 1).
     pub fn new(mesh: &TriMesh, face: FaceId, bary: [f64; 3]) -> Result<Self> {
         let bad = |reason: String| GeodesicError::InvalidSurfacePoint { face, reason };
         if face.idx() >= mesh.face_count() {
@@ -163,6 +167,12 @@ impl Frame {
 /// assert!((path.length - d[500]).abs() < 0.01 * d[500]);
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// `GeodesicError::FieldLength` when `distance` does not have one value per vertex;
+/// `GeodesicError::NoSources` / `GeodesicError::SourceOutOfRange` for bad sources;
+/// `GeodesicError::InvalidOption` (`distance`) when the field holds NaN; `GeodesicError::InvalidSurfacePoint`
+/// for a bad start point; `GeodesicError::Unreachable` when the start is in a component without a source.
 pub fn trace_path(
     mesh: &TriMesh,
     distance: &[f64],

@@ -22,6 +22,10 @@ use crate::error::IoError;
 /// assert_eq!(std::fs::read(&path).unwrap(), b"done\n");
 /// # Ok(()) }
 /// ```
+///
+/// # Errors
+/// Whatever `write` returns, and an error converted from `IoError::Io` when the temporary file cannot be
+/// created, flushed or renamed over `path` (a missing folder included); `path` is left untouched on error.
 pub fn write_atomic<E: From<IoError>>(
     path: impl AsRef<Path>,
     write: impl FnOnce(&mut dyn Write) -> Result<(), E>,

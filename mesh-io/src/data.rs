@@ -223,6 +223,10 @@ impl<'a> MeshView<'a> {
 
     /// Checks that every attribute has one entry per vertex (per face for
     /// corner UVs); writers call this first.
+    ///
+    /// # Errors
+    /// `IoError::AttributeLength` naming the first attribute whose length is not the vertex count (the face
+    /// count for corner UVs).
     pub fn check(&self) -> Result<()> {
         let (nv, nf) = (self.mesh.vertex_count(), self.mesh.face_count());
         let mut lengths = vec![

@@ -156,6 +156,33 @@ pub enum IoError {
         /// What was given.
         found: usize,
     },
+    /// A glTF buffer `uri` that may not be read: not a `data:` URI or a
+    /// relative path to a regular file inside the `.gltf` file's folder, or a
+    /// file shorter than the buffer's `byteLength`.
+    #[error("{at}: buffer uri `{uri}` refused: {reason}")]
+    ExternalBuffer {
+        /// Where (the `.gltf` file).
+        at: Location,
+        /// The URI as written.
+        uri: String,
+        /// Why it is refused, naming the file it resolves to when it got that far.
+        reason: String,
+    },
+    /// A value the format stores as a 32-bit float would be lost: finite but
+    /// beyond the `f32` range, or non-zero but flushed to zero (see
+    /// [`crate::precision`]). [`crate::WriteOptions::allow_precision_loss`]
+    /// writes it anyway.
+    #[error("{at}: the {what} is {value:e}, which {problem}; write a format that stores 64-bit values (OBJ, OFF, PLY with double), rescale the mesh, or allow the loss")]
+    Precision {
+        /// Where (the format written).
+        at: Location,
+        /// The value, e.g. "position of vertex 12".
+        what: String,
+        /// The value in `f64`.
+        value: f64,
+        /// What would happen to it.
+        problem: &'static str,
+    },
     /// The glTF JSON is malformed or does not validate.
     #[error("{at}: {source}")]
     Gltf {
@@ -207,6 +234,8 @@ impl IoError {
             | Self::NonFinite { at, .. }
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
+            | Self::ExternalBuffer { at, .. }
+            | Self::Precision { at, .. }
             | Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }
@@ -222,6 +251,8 @@ impl IoError {
             | Self::NonFinite { at, .. }
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
+            | Self::ExternalBuffer { at, .. }
+            | Self::Precision { at, .. }
             | Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }

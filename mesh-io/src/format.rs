@@ -34,6 +34,10 @@ impl Format {
     }
 
     /// The format named by a path's extension, or [`IoError::UnknownFormat`].
+    ///
+    /// # Errors
+    /// `IoError::UnknownFormat` when the extension is missing or not one of .obj, .off, .ply, .stl, .gltf,
+    /// .glb.
     pub fn from_path(path: &Path) -> Result<Self> {
         path.extension()
             .and_then(|e| e.to_str())

@@ -8,12 +8,15 @@
 //! concatenated without welding. Attributes kept: `NORMAL`, `TEXCOORD_0` (v
 //! flipped to the OBJ/PLY convention `v = 1 - v_gltf`), `COLOR_0`, and
 //! application-specific scalar attributes `_NAME` as scalars `NAME`; an
-//! attribute is kept only when every primitive has it. Buffers come from the
+//! attribute is kept only when every primitive has it. A scene with no
+//! triangle primitive reads its `POINTS` primitives as vertices without
+//! faces (what the writer makes of a mesh without faces). Buffers come from the
 //! GLB `BIN` chunk, `data:` URIs, or files next to the `.gltf` (given a base
 //! directory). Points, lines, morph targets, skins, materials and textures
 //! are not read; sparse accessors are refused.
 //!
-//! Writing produces one mesh with one triangle primitive: `POSITION`,
+//! Writing produces one mesh with one triangle primitive (a `POINTS`
+//! primitive when the mesh has no faces): `POSITION`,
 //! `NORMAL`, `TEXCOORD_0`, `COLOR_0` and `_NAME` scalars as `f32`, `u32`
 //! indices. glTF stores one texture coordinate per vertex, so vertices with
 //! several corner UVs are split. JSON parsing and validation use the `gltf`
@@ -41,6 +44,9 @@ const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
 /// Checks that `bytes` start with the GLB magic `glTF`.
+///
+/// # Errors
+/// `IoError::WrongMagic` when the bytes do not start with `glTF`.
 pub fn check_glb_magic(bytes: &[u8]) -> Result<()> {
     if bytes.starts_with(GLB_MAGIC) {
         Ok(())
@@ -52,6 +58,16 @@ pub fn check_glb_magic(bytes: &[u8]) -> Result<()> {
 /// Reads glTF JSON or GLB from memory. External buffer files are looked up
 /// in `base_dir` (the `.gltf` file's directory); without one they are an
 /// [`IoError::Unsupported`]. Cost O(size).
+///
+/// # Errors
+/// `IoError::Gltf` for JSON that is not glTF; `IoError::Truncated` for a GLB container, chunk, buffer or
+/// accessor shorter than announced (GLB lengths are checked against the data, buffers against their
+/// byteLength, accessors against their buffer views); `IoError::ExternalBuffer` for a buffer URI that is not
+/// a data: URI or a relative path to a regular file inside `base_dir`, or a file shorter than byteLength (or
+/// any external buffer when `base_dir` is None); `IoError::Syntax` for an index (mesh, node, accessor, buffer
+/// view) out of range or a node hierarchy that is not a tree; `IoError::Unsupported` for sparse accessors,
+/// GLB versions other than 2 or non-base64 data URIs; `IoError::Index`, `IoError::NonFinite` and
+/// `IoError::Mesh` as for every reader.
 pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<MeshData> {
     let (json, bin) = if bytes.starts_with(GLB_MAGIC) { split_glb(bytes)? } else { (bytes, None) };
     // Not `gltf::Document::from_json`: its validation indexes accessors
@@ -60,14 +76,25 @@ pub fn read(bytes: &[u8], base_dir: Option<&Path>) -> Result<MeshData> {
     // enumeration is checked here where it is used instead.
     let root = json::Root::from_slice(json).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
     let buffers = load_buffers(&root, bin, base_dir)?;
-    let mut parts = Parts::default();
-    for (mesh, transform) in mesh_instances(&root)? {
+    let instances = mesh_instances(&root)?;
+    let mut parts = Parts { points: !has_triangles(&root, &instances), ..Parts::default() };
+    for (mesh, transform) in instances {
         let mesh = root.meshes.get(mesh).ok_or_else(|| index_error("a mesh", mesh))?;
         for primitive in &mesh.primitives {
             parts.add(&root, &buffers, primitive, transform)?;
         }
     }
     parts.finish()
+}
+
+/// Whether any instanced mesh has a triangle primitive.
+fn has_triangles(root: &json::Root, instances: &[(usize, DMat4)]) -> bool {
+    use json::mesh::Mode;
+    instances
+        .iter()
+        .filter_map(|&(m, _)| root.meshes.get(m))
+        .flat_map(|m| &m.primitives)
+        .any(|p| matches!(p.mode, Checked::Valid(Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan)))
 }
 
 fn index_error(expected: &str, index: usize) -> IoError {
@@ -117,11 +144,14 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>)> {
     Ok((json, bin))
 }
 
-/// The data of every buffer, checked against its declared length.
+/// The data of every buffer, cut to its declared `byteLength` and refused
+/// when shorter: the GLB `BIN` chunk, a base64 `data:` URI, or a file inside
+/// `base_dir` ([`external_buffer`]).
 fn load_buffers<'a>(root: &json::Root, bin: Option<&'a [u8]>, base_dir: Option<&Path>) -> Result<Vec<Cow<'a, [u8]>>> {
     let mut out = Vec::with_capacity(root.buffers.len());
     for (i, buffer) in root.buffers.iter().enumerate() {
-        let data: Cow<'a, [u8]> =
+        let length = buffer.byte_length.0;
+        let mut data: Cow<'a, [u8]> =
             match buffer.uri.as_deref() {
                 None => Cow::Borrowed(
                     bin.ok_or_else(|| IoError::truncated(loc(), format!("the GLB BIN chunk of buffer {i}")))?,
@@ -135,24 +165,110 @@ fn load_buffers<'a>(root: &json::Root, bin: Option<&'a [u8]>, base_dir: Option<&
                     })?)
                 }
                 Some(uri) => {
-                    let dir = base_dir.ok_or_else(|| {
-                        IoError::unsupported(loc(), format!("external buffer `{uri}` when reading from memory"))
+                    let dir = base_dir.ok_or_else(|| IoError::ExternalBuffer {
+                        at: loc(),
+                        uri: uri.to_owned(),
+                        reason: "external buffer files cannot be resolved when reading from memory (no folder)".into(),
                     })?;
-                    let path = dir.join(percent_decode(uri));
-                    Cow::Owned(std::fs::read(&path).map_err(|e| IoError::io(&path, e))?)
+                    Cow::Owned(external_buffer(dir, uri, length)?)
                 }
             };
-        if (data.len() as u64) < buffer.byte_length.0 {
-            let e = format!("buffer {i} of {} bytes, found {}", buffer.byte_length.0, data.len());
+        if (data.len() as u64) < length {
+            let e = format!("buffer {i} of {length} bytes (its byteLength), found {}", data.len());
             return Err(IoError::truncated(loc(), e));
+        }
+        // Only the declared bytes: views beyond `byteLength` are refused.
+        match &mut data {
+            Cow::Borrowed(b) => *b = &b[..length as usize],
+            Cow::Owned(v) => v.truncate(length as usize),
         }
         out.push(data);
     }
     Ok(out)
 }
 
-/// Decodes `%XX` escapes of a relative URI.
-fn percent_decode(uri: &str) -> String {
+/// Reads the external buffer file `uri` of `byte_length` bytes, which must be
+/// a relative URI naming a regular file inside `dir` (the `.gltf` file's
+/// folder) once both are canonicalized (symbolic links resolved). Absolute
+/// paths, `..` components, other URI schemes, escapes out of the folder and
+/// devices, pipes or folders are refused with [`IoError::ExternalBuffer`]
+/// before anything is opened; the file's size is checked against
+/// `byte_length` first and at most `byte_length` bytes are read. Cost
+/// O(`byte_length`).
+fn external_buffer(dir: &Path, uri: &str, byte_length: u64) -> Result<Vec<u8>> {
+    let refuse = |path: Option<&Path>, reason: String| IoError::ExternalBuffer {
+        at: loc(),
+        uri: uri.to_owned(),
+        reason: match path {
+            Some(p) => format!("{}: {reason}", p.display()),
+            None => reason,
+        },
+    };
+    let relative = relative_uri_path(uri).map_err(|reason| refuse(None, reason.into()))?;
+    let folder = dir.canonicalize().map_err(|e| refuse(Some(dir), format!("the folder cannot be resolved: {e}")))?;
+    let named = folder.join(&relative);
+    let path = named.canonicalize().map_err(|e| refuse(Some(&named), format!("cannot be resolved: {e}")))?;
+    if !path.starts_with(&folder) {
+        let reason = format!("it resolves to {}, outside the folder {}", path.display(), folder.display());
+        return Err(refuse(Some(&path), reason));
+    }
+    let meta = std::fs::metadata(&path).map_err(|e| refuse(Some(&path), e.to_string()))?;
+    if !meta.is_file() {
+        return Err(refuse(Some(&path), "not a regular file (a folder, device or pipe)".into()));
+    }
+    if meta.len() < byte_length {
+        let reason = format!("the file has {} bytes, the buffer's byteLength is {byte_length}", meta.len());
+        return Err(refuse(Some(&path), reason));
+    }
+    let file = std::fs::File::open(&path).map_err(|e| IoError::io(&path, e))?;
+    // Capacity bounded by the file's real size, checked above.
+    let mut data = Vec::with_capacity(byte_length as usize);
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, byte_length), &mut data)
+        .map_err(|e| IoError::io(&path, e))?;
+    if (data.len() as u64) < byte_length {
+        let reason = format!("only {} of the buffer's {byte_length} bytes could be read", data.len());
+        return Err(refuse(Some(&path), reason));
+    }
+    Ok(data)
+}
+
+/// The relative path a buffer URI names, after `%XX` decoding; refused
+/// (with the reason) when it has a scheme, is absolute, climbs out with
+/// `..`, or decodes to something that is not a plain relative path.
+fn relative_uri_path(uri: &str) -> std::result::Result<std::path::PathBuf, &'static str> {
+    use std::path::Component;
+    if uri.is_empty() {
+        return Err("an empty URI");
+    }
+    let scheme = uri
+        .split_once(':')
+        .is_some_and(|(s, _)| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c)));
+    if scheme {
+        return Err("only data: URIs and relative paths are allowed");
+    }
+    let decoded = percent_decode(uri).ok_or("a %-escape that does not decode to UTF-8 text")?;
+    if decoded.contains(['\\', '\0']) || decoded.contains(':') {
+        return Err("a backslash, colon or NUL character in the path");
+    }
+    let path = Path::new(&decoded);
+    if path.is_absolute() || decoded.starts_with('/') {
+        return Err("an absolute path (only paths relative to the glTF file's folder are allowed)");
+    }
+    for component in path.components() {
+        match component {
+            Component::Normal(_) | Component::CurDir => {}
+            Component::ParentDir => {
+                return Err("a `..` component (the buffer must stay inside the glTF file's folder)")
+            }
+            Component::RootDir | Component::Prefix(_) => return Err("an absolute path"),
+        }
+    }
+    Ok(path.to_path_buf())
+}
+
+/// Decodes the `%XX` escapes of a relative URI; `None` when the result is
+/// not UTF-8.
+fn percent_decode(uri: &str) -> Option<String> {
     let b = uri.as_bytes();
     let mut out = Vec::with_capacity(b.len());
     let mut i = 0;
@@ -170,7 +286,7 @@ fn percent_decode(uri: &str) -> String {
             }
         }
     }
-    String::from_utf8_lossy(&out).into_owned()
+    String::from_utf8(out).ok()
 }
 
 const BASE64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -357,6 +473,10 @@ struct Parts {
     colors: Option<Vec<[f32; 4]>>,
     scalars: Vec<(String, Vec<f64>)>,
     primitives: usize,
+    /// Read `POINTS` primitives as vertices without faces (when the scene
+    /// has no triangle primitive: a point set, as [`write_glb`] writes a mesh
+    /// without faces).
+    points: bool,
     report: ReadReport,
 }
 
@@ -371,7 +491,8 @@ impl Parts {
             p.attributes.get(&Checked::Valid(s.clone())).map(|a| accessor(root, buffers, a.value(), dims)).transpose()
         };
         let triangles = matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan);
-        let (Some(xyz), true) = (get(&Semantic::Positions, &[3])?, triangles) else {
+        let points = mode == Mode::Points && self.points;
+        let (Some(xyz), true) = (get(&Semantic::Positions, &[3])?, triangles || points) else {
             self.report.note("primitives that are not triangles, or have no positions, skipped");
             return Ok(());
         };
@@ -383,8 +504,10 @@ impl Parts {
             }
             self.positions.push(p);
         }
-        let indices = p.indices.map(|i| accessor(root, buffers, i.value(), &[1])).transpose()?;
-        self.triangles(mode, indices.as_ref(), nv, base, m.determinant() < 0.0)?;
+        if triangles {
+            let indices = p.indices.map(|i| accessor(root, buffers, i.value(), &[1])).transpose()?;
+            self.triangles(mode, indices.as_ref(), nv, base, m.determinant() < 0.0)?;
+        }
         self.attributes(p, &get, nv, m)?;
         self.primitives += 1;
         Ok(())
@@ -495,6 +618,10 @@ fn corner_triples(mode: json::mesh::Mode, n: usize) -> Box<dyn Iterator<Item = [
 
 /// Writes a binary glTF (`.glb`): one mesh, one triangle primitive, `f32`
 /// attributes and `u32` indices in the `BIN` chunk. Cost O(size).
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Gltf` when the JSON cannot be serialized or
+/// written; values are narrowed to f32 without the check of [`crate::write_to`].
 pub fn write_glb<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
     let (root, bin) = document(view, false)?;
     let json = json::serialize::to_vec(&root).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
@@ -505,6 +632,10 @@ pub fn write_glb<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
 
 /// Writes glTF JSON (`.gltf`) with the buffer embedded as a base64 `data:`
 /// URI, so the file stands alone. Cost O(size).
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Gltf` when the JSON cannot be serialized;
+/// `IoError::Io` when `out` fails. Values are narrowed to f32 without the check of [`crate::write_to`].
 pub fn write_gltf<W: Write>(mut out: W, view: &MeshView<'_>) -> Result<()> {
     let (root, _) = document(view, true)?;
     let json = json::serialize::to_vec(&root).map_err(|e| gltf_error(::gltf::Error::Deserialize(e)))?;
@@ -729,7 +860,7 @@ mod tests {
         }
         assert_eq!(base64_encode(b"Man"), "TWFu");
         assert!(base64_decode(b"a*b").is_none());
-        assert_eq!(percent_decode("my%20mesh.bin"), "my mesh.bin");
+        assert_eq!(percent_decode("my%20mesh.bin").as_deref(), Some("my mesh.bin"));
     }
 
     #[test]

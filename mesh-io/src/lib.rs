@@ -5,7 +5,10 @@
 //!
 //! - [`read`] / [`write()`]: by file name (format from the extension, content
 //!   checked against it, writes atomic); [`read_from`] / [`write_to`] for
-//!   memory and streams.
+//!   memory and streams. Writers return a [`WriteReport`] of how much values
+//!   stored as 32-bit floats were rounded, and refuse values `f32` cannot
+//!   hold ([`IoError::Precision`]) unless
+//!   [`WriteOptions::allow_precision_loss`] is set ([`precision`]).
 //! - [`MeshData`]: the mesh and its attributes as read, with a [`ReadReport`]
 //!   of what the reader changed (polygons triangulated, faces dropped,
 //!   vertices welded); [`MeshView`]: what the writers take.
@@ -50,6 +53,7 @@ pub mod gltf;
 pub mod obj;
 pub mod off;
 pub mod ply;
+pub mod precision;
 pub mod stl;
 mod text;
 
@@ -59,4 +63,5 @@ pub use error::{IoError, Location, Result};
 pub use file::{read, read_from, read_with, write, write_polylines, write_to, ReadOptions, WriteOptions};
 pub use format::Format;
 pub use ply::{PlyEncoding, PlyOptions, PlyUvNames};
+pub use precision::WriteReport;
 pub use stl::StlEncoding;

@@ -24,6 +24,11 @@ use crate::format::Format;
 use crate::text::{Scanner, TextWriter};
 
 /// Reads an OBJ file from memory. Cost O(size).
+///
+/// # Errors
+/// `IoError::Syntax` for a malformed number or index (with the line); `IoError::Index` for a face corner
+/// naming a vertex, texture coordinate or normal that does not exist; `IoError::NonFinite` for a NaN or
+/// infinite position; `IoError::Mesh` when the faces do not make a valid `TriMesh`.
 pub fn read(bytes: &[u8]) -> Result<MeshData> {
     let mut r = Reader::default();
     let mut s = Scanner::new(bytes, Format::Obj, Some(b'#'));
@@ -182,6 +187,9 @@ fn average_per_vertex(nv: usize, faces: &[[u32; 3]], corners: &[[DVec3; 3]]) -> 
 /// Writes an OBJ file: `v` (with `r g b` when there are colours), `vt` per
 /// vertex or per corner (when `corner_uvs` is set), `vn`, and `f` lines.
 /// Scalars are not stored. Cost O(size).
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Io` when `out` fails.
 pub fn write<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
     view.check()?;
     let mesh = view.mesh;
@@ -228,6 +236,9 @@ pub fn write<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
 /// Writes polylines (geodesic paths, boundary loops, ...) as OBJ `v` and `l`
 /// elements, one `l` line per polyline; single points become `p` elements.
 /// Cost O(points).
+///
+/// # Errors
+/// `IoError::Io` when `out` fails.
 pub fn write_polylines<W: Write, P: AsRef<[DVec3]>>(out: W, polylines: &[P]) -> Result<()> {
     let mut w = TextWriter::new(out);
     w.str("# written by mesh-io").line()?;

@@ -27,6 +27,12 @@ struct Fields {
 }
 
 /// Reads an OFF file from memory. Cost O(size).
+///
+/// # Errors
+/// `IoError::WrongMagic` or `IoError::Syntax` for a malformed header; `IoError::Count` for a negative count,
+/// one beyond 32-bit indices, or more elements than the remaining bytes could hold (checked before
+/// allocating); `IoError::Truncated` when the data ends early; `IoError::Index`, `IoError::NonFinite` and
+/// `IoError::Mesh` as for every reader.
 pub fn read(bytes: &[u8]) -> Result<MeshData> {
     let mut s = Scanner::new(bytes, Format::Off, Some(b'#'));
     if !s.skip_to_content() {
@@ -190,6 +196,9 @@ fn color(at: &Location, words: &[&[u8]]) -> Result<[f32; 4]> {
 /// Writes an OFF file: `[ST][C][N]OFF` as the attributes require, colours as
 /// integers `0..=255`, floats in shortest round-trip form. Corner UVs and
 /// scalars are not stored. Cost O(size).
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Io` when `out` fails.
 pub fn write<W: Write>(out: W, view: &MeshView<'_>) -> Result<()> {
     view.check()?;
     let mesh = view.mesh;

@@ -553,6 +553,12 @@ impl Source for Binary<'_> {
 }
 
 /// Reads a PLY file (ascii or binary) from memory. Cost O(size).
+///
+/// # Errors
+/// `IoError::WrongMagic` or `IoError::Syntax` for a malformed header; `IoError::Count` for element counts the
+/// data cannot hold (checked before allocating) or a vertex count beyond 32-bit indices; `IoError::Truncated`
+/// when a binary body or list ends early; `IoError::Syntax` for a face element without a vertex_indices list
+/// or a non-integer index; `IoError::Index`, `IoError::NonFinite` and `IoError::Mesh` as for every reader.
 pub fn read(bytes: &[u8]) -> Result<MeshData> {
     let h = header(bytes)?;
     let body = bytes.get(h.body..).unwrap_or_default();
@@ -739,6 +745,11 @@ impl Faces {
 /// Scalar names must be single words of printable ascii that do not collide
 /// with the properties this crate writes (`x`, `nx`, `red`, ...), else
 /// [`IoError::Unsupported`].
+///
+/// # Errors
+/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Unsupported` for a scalar name that is not a
+/// single printable word or clashes with a standard property; `IoError::Io` when `out` fails. Float
+/// properties are narrowed without the check of [`crate::write_to`].
 pub fn write<W: Write>(out: W, view: &MeshView<'_>, options: &PlyOptions) -> Result<()> {
     view.check()?;
     let layout = Layout::new(view, options)?;

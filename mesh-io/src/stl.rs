@@ -43,6 +43,12 @@ fn triangle_count(bytes: &[u8]) -> Option<u32> {
 /// Reads an ascii or binary STL from memory, welding corners within
 /// `weld_tolerance` (`Some(0.0)`: identical positions; `None`: no welding,
 /// three vertices per triangle). Cost O(n log n) for `n` triangles.
+///
+/// # Errors
+/// `IoError::Truncated` for a binary STL shorter than its triangle count says, or an ascii STL without
+/// `endfacet`/`endsolid`; `IoError::Syntax` for an ascii keyword or number that is not STL, or a facet
+/// without 3 vertices; `IoError::NonFinite` for a NaN or infinite corner; `IoError::Mesh` for a negative
+/// `weld_tolerance` (mesh-core's welding refuses it) or faces that do not make a valid `TriMesh`.
 pub fn read(bytes: &[u8], weld_tolerance: Option<f64>) -> Result<MeshData> {
     let ascii =
         !is_binary(bytes) && bytes.trim_ascii_start().get(..5).is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
@@ -134,9 +140,22 @@ fn read_ascii(bytes: &[u8]) -> Result<(Vec<DVec3>, ReadReport)> {
     Ok((corners, ReadReport::default()))
 }
 
-/// Writes an STL. Only positions are stored. Cost O(F).
+/// Writes an STL. Only positions are stored, as the corners of each
+/// triangle (vertices no face uses are left out). Cost O(F).
+///
+/// # Errors
+/// [`IoError::Unsupported`] for a mesh with vertices but no faces (STL
+/// cannot hold vertices without triangles) or more than 2^32 triangles;
+/// [`IoError::AttributeLength`] from [`MeshView::check`]; [`IoError::Io`].
 pub fn write<W: Write>(out: W, view: &MeshView<'_>, encoding: StlEncoding) -> Result<()> {
     view.check()?;
+    if view.mesh.face_count() == 0 && view.mesh.vertex_count() > 0 {
+        let what = format!(
+            "{} vertices without faces: STL stores triangles only (write PLY, OBJ, OFF or glTF instead)",
+            view.mesh.vertex_count()
+        );
+        return Err(IoError::unsupported(Location::new(Format::Stl), what));
+    }
     match encoding {
         StlEncoding::Ascii => write_ascii(out, view),
         StlEncoding::Binary => write_binary(out, view),

@@ -140,7 +140,7 @@ fn gltf_structure_errors() {
     let cycle = text.replacen("\"mesh\":0", "\"mesh\":0,\"children\":[0]", 1);
     assert!(read_from(cycle.as_bytes(), Format::Gltf, &ReadOptions::default()).is_err());
     let external = text.replacen("data:application/octet-stream;base64,", "missing.bin#", 1);
-    assert!(matches!(from(Format::Gltf, external.as_bytes()), IoError::Unsupported { .. }));
+    assert!(matches!(from(Format::Gltf, external.as_bytes()), IoError::ExternalBuffer { .. }));
     let bad64 = text.replacen(";base64,", ";base64,*", 1);
     assert!(matches!(from(Format::Gltf, bad64.as_bytes()), IoError::Syntax { .. }));
     assert!(matches!(from(Format::Gltf, b"{\"asset\":{}}"), IoError::Gltf { .. }));

@@ -134,6 +134,9 @@ pub(crate) fn basis_derivatives_in<const N: usize>(kv: &KnotVector, span: usize,
 /// buffer laid out row by row: `out[k * (p + 1) + j]` for `k = 0..=n`.
 /// Returns [`NurbsError::Count`] when `out` is shorter than `(n + 1)(p + 1)`.
 /// Cost O(p^2 + n p), no allocation.
+///
+/// # Errors
+/// `NurbsError::Count` when `out` is shorter than `(n + 1) * (degree + 1)` values.
 pub fn basis_derivatives_into(kv: &KnotVector, span: usize, u: f64, n: usize, out: &mut [f64]) -> Result<()> {
     let stride = kv.degree() + 1;
     let needed = (n + 1) * stride;

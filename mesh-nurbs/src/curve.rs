@@ -25,6 +25,11 @@ impl NurbsCurve {
     /// Builds a curve after checking that there are as many control points and
     /// weights as the knots ask for, that points are finite and weights finite
     /// and positive. Cost O(n).
+    ///
+    /// # Errors
+    /// `NurbsError::Count` when `points` or `weights` do not have one entry per control point of `knots`;
+    /// `NurbsError::NonFiniteControlPoint` for a NaN or infinite point; `NurbsError::Weight` for a weight
+    /// that is not finite and > 0.
     pub fn new(knots: KnotVector, points: Vec<DVec3>, weights: Vec<f64>) -> Result<Self> {
         check_count("control points", knots.control_count(), points.len())?;
         let homogeneous = homogeneous(&points, &weights)?;
@@ -32,6 +37,9 @@ impl NurbsCurve {
     }
 
     /// A polynomial B-spline curve (all weights 1). Cost O(n).
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::new`] (`NurbsError::Count`, `NurbsError::NonFiniteControlPoint`).
     pub fn non_rational(knots: KnotVector, points: Vec<DVec3>) -> Result<Self> {
         let weights = vec![1.0; points.len()];
         Self::new(knots, points, weights)
@@ -76,6 +84,9 @@ impl NurbsCurve {
     /// The point `C(u)` (eq. 2.3-2.4 in one variable; Piegl & Tiller A4.1).
     /// Finite parameters outside the domain are clamped into it; NaN and
     /// infinities give [`NurbsError::NonFiniteParameter`]. Cost O(p^2).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u` (finite values are clamped to the domain).
     pub fn point(&self, u: f64) -> Result<DVec3> {
         check_param("u", u)?;
         let u = self.knots.clamp(u);
@@ -90,6 +101,9 @@ impl NurbsCurve {
     /// `d^k C / du^k`, from the derivatives of the homogeneous curve by the
     /// quotient rule (Piegl & Tiller A3.2 and A4.2). Allocates two small vectors.
     /// Cost O(p^2 + order p + order^2).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u`.
     pub fn derivatives(&self, u: f64, order: usize) -> Result<Vec<DVec3>> {
         check_param("u", u)?;
         let u = self.knots.clamp(u);
@@ -115,6 +129,9 @@ impl NurbsCurve {
 
     /// Unit tangent `C'(u) / |C'(u)|`, or zero where the derivative vanishes.
     /// Cost O(p^2).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u`.
     pub fn tangent(&self, u: f64) -> Result<DVec3> {
         let d = self.derivatives(u, 1)?;
         Ok(d[1].normalize_or_zero())
@@ -122,6 +139,9 @@ impl NurbsCurve {
 
     /// Curvature `|C' x C''| / |C'|^3` (eq. 2.17: the inverse radius of the
     /// osculating circle), 0 where `C'` vanishes. Cost O(p^2).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u`.
     pub fn curvature(&self, u: f64) -> Result<f64> {
         let d = self.derivatives(u, 2)?;
         let speed = d[1].length();
@@ -135,6 +155,10 @@ impl NurbsCurve {
     /// algorithm, Piegl & Tiller A5.1): the shape and parameterization are
     /// unchanged. `u` must lie inside the open domain and its multiplicity stay
     /// at most the degree. Cost O(n + times p).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u`; `NurbsError::KnotInsertion` when `u` is
+    /// outside the domain or the multiplicity would exceed the degree.
     pub fn insert_knot(&self, u: f64, times: usize) -> Result<Self> {
         let (knots, homogeneous) = insert_knot_line(&self.knots, &self.homogeneous, u, times)?;
         Self::from_homogeneous(knots, homogeneous)
@@ -148,6 +172,9 @@ impl NurbsCurve {
     /// multiplicity `p + 1` (no knot removal, so the result is exact but not
     /// minimal; A5.9 of Piegl & Tiller gives the minimal form).
     /// Cost O(n p).
+    ///
+    /// # Errors
+    /// `NurbsError::NotClamped` for unclamped knots; `NurbsError::Degree` beyond the maximal degree.
     pub fn elevate_degree(&self) -> Result<Self> {
         let (knots, homogeneous) = elevate_degree_line(&self.knots, &self.homogeneous)?;
         Self::from_homogeneous(knots, homogeneous)
@@ -155,6 +182,9 @@ impl NurbsCurve {
 
     /// The image of the curve under an affine map (NURBS are affinely
     /// invariant: map the control points, keep the weights). Cost O(n).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteControlPoint` when the map sends a control point to a non-finite position.
     pub fn transform(&self, map: &DAffine3) -> Result<Self> {
         let points = self.points.iter().map(|&p| map.transform_point3(p)).collect();
         Self::new(self.knots.clone(), points, self.weights.clone())

@@ -99,6 +99,9 @@ impl SurfaceFrame {
     /// quotient rule), then eq. 2.21-2.24 and the eigen-decomposition of the
     /// shape operator. Finite parameters outside the domain are clamped; NaN and
     /// infinities are refused. Cost O(p^2 + q^2 + p q), no allocation.
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u` or `v`.
     pub fn new(surface: &NurbsSurface, u: f64, v: f64) -> Result<Self> {
         let derivatives = surface.derivatives(u, v, 2)?;
         let uv = DVec2::new(surface.knots_u().clamp(u), surface.knots_v().clamp(v));

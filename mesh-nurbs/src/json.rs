@@ -104,6 +104,11 @@ impl SurfaceDocument {
 
     /// Validates the document into a surface (format, version, knots, counts,
     /// points, weights). Cost O(n).
+    ///
+    /// # Errors
+    /// `NurbsError::Json` for another format name or version; the errors of
+    /// [`crate::KnotVector::for_control_points`] and [`crate::NurbsSurface::new`] for knots, counts, control
+    /// points and weights that do not make a surface.
     pub fn to_surface(&self) -> Result<NurbsSurface> {
         if self.format != FORMAT {
             return Err(NurbsError::Json(format!("format is {:?}, expected {FORMAT:?}", self.format)));
@@ -120,17 +125,27 @@ impl SurfaceDocument {
 }
 
 /// Reads a surface from JSON text. Cost O(n).
+///
+/// # Errors
+/// `NurbsError::Json` for text that is not a surface document; the errors of [`SurfaceDocument::to_surface`].
 pub fn from_json_str(text: &str) -> Result<NurbsSurface> {
     serde_json::from_str::<SurfaceDocument>(text)?.to_surface()
 }
 
 /// Reads a surface from a reader of JSON. Cost O(n).
+///
+/// # Errors
+/// `NurbsError::Json` when reading fails or the text is not a surface document; the errors of
+/// [`SurfaceDocument::to_surface`].
 pub fn read_json(reader: impl Read) -> Result<NurbsSurface> {
     serde_json::from_reader::<_, SurfaceDocument>(reader)?.to_surface()
 }
 
 /// Writes a surface as JSON text laid out like the module example (one field
 /// per line, one control point per line). Cost O(n).
+///
+/// # Errors
+/// `NurbsError::Json` if serialization fails (a non-finite number cannot be written).
 pub fn to_json_string(surface: &NurbsSurface) -> Result<String> {
     let mut out = Vec::new();
     write_json(surface, &mut out)?;
@@ -139,6 +154,9 @@ pub fn to_json_string(surface: &NurbsSurface) -> Result<String> {
 
 /// Writes a surface as JSON to a writer, laid out like [`to_json_string`].
 /// Cost O(n).
+///
+/// # Errors
+/// `NurbsError::Json` when serialization or the writer fails.
 pub fn write_json(surface: &NurbsSurface, writer: impl Write) -> Result<()> {
     let mut serializer = serde_json::Serializer::with_formatter(writer, Layout::default());
     SurfaceDocument::from_surface(surface).serialize(&mut serializer)?;

@@ -28,6 +28,12 @@ pub struct KnotVector {
 impl KnotVector {
     /// Validates `knots` for a basis of `degree`. The number of control points
     /// is implied: `knots.len() - degree - 1`. Cost O(m).
+    ///
+    /// # Errors
+    /// `NurbsError::Degree` outside 1..=`MAX_DEGREE`; `NurbsError::KnotCount` for fewer than 2 (degree + 1)
+    /// knots; `NurbsError::NonFiniteKnot` / `NurbsError::DecreasingKnots` for bad values;
+    /// `NurbsError::KnotMultiplicity` for a knot repeated more than degree + 1 times;
+    /// `NurbsError::EmptyDomain` when the domain has zero length.
     pub fn new(degree: usize, knots: Vec<f64>) -> Result<Self> {
         if degree == 0 || degree > MAX_DEGREE {
             return Err(NurbsError::Degree { degree, max: MAX_DEGREE });
@@ -50,6 +56,10 @@ impl KnotVector {
     }
 
     /// Validates `knots` and checks that they fit `control_points` control points.
+    ///
+    /// # Errors
+    /// `NurbsError::KnotCount` unless there are `control_points + degree + 1` knots; the errors of
+    /// [`KnotVector::new`].
     pub fn for_control_points(degree: usize, knots: Vec<f64>, control_points: usize) -> Result<Self> {
         if control_points.checked_add(degree + 1) != Some(knots.len()) {
             return Err(NurbsError::KnotCount { knots: knots.len(), degree, control_points });
@@ -60,6 +70,10 @@ impl KnotVector {
     /// Clamped (open) uniform knots on `[0, 1]`: `degree + 1` zeros, equally
     /// spaced interior knots, `degree + 1` ones. The curve interpolates its end
     /// control points. Cost O(n).
+    ///
+    /// # Errors
+    /// `NurbsError::Degree` outside 1..=`MAX_DEGREE`; `NurbsError::KnotCount` for fewer than degree + 1
+    /// control points.
     pub fn clamped_uniform(degree: usize, control_points: usize) -> Result<Self> {
         check_sizes(degree, control_points)?;
         let spans = control_points - degree;
@@ -71,6 +85,10 @@ impl KnotVector {
 
     /// Uniform (unclamped, equally spaced) knots, scaled so that the domain
     /// `[t_p, t_{n+1}]` is `[0, 1]`. Cost O(n).
+    ///
+    /// # Errors
+    /// `NurbsError::Degree` outside 1..=`MAX_DEGREE`; `NurbsError::KnotCount` for fewer than degree + 1
+    /// control points.
     pub fn uniform(degree: usize, control_points: usize) -> Result<Self> {
         check_sizes(degree, control_points)?;
         let spans = (control_points - degree) as f64;

@@ -20,6 +20,10 @@ use crate::surface::NurbsSurface;
 /// most 90 degrees (Piegl & Tiller A7.1): corner weights `cos(d/2)` for a
 /// piece of angle `d`, knots doubled between pieces. Every point lies on the
 /// circle to rounding. Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for a radius that is not finite and > 0, a non-finite center, or angles that do not
+/// span (0, 2 pi].
 pub fn arc(center: DVec3, radius: f64, start: f64, end: f64) -> Result<NurbsCurve> {
     check_positive("radius", radius)?;
     check_finite("center", center)?;
@@ -56,11 +60,17 @@ pub fn arc(center: DVec3, radius: f64, start: f64, end: f64) -> Result<NurbsCurv
 /// Full circle of `radius` about `center` in the plane `z = center.z`,
 /// counter-clockwise from angle 0: four rational quadratic quarter arcs with
 /// nine control points (weights `1, sqrt(2)/2, 1, ...`). Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for a radius that is not finite and > 0 or a non-finite center.
 pub fn circle(center: DVec3, radius: f64) -> Result<NurbsCurve> {
     arc(center, radius, 0.0, TAU)
 }
 
 /// Straight segment from `a` to `b` as a degree-1 curve on `[0, 1]`. Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for a non-finite end.
 pub fn line(a: DVec3, b: DVec3) -> Result<NurbsCurve> {
     check_finite("line end", a)?;
     check_finite("line end", b)?;
@@ -73,6 +83,10 @@ pub fn line(a: DVec3, b: DVec3) -> Result<NurbsCurve> {
 /// the unit arc of [`arc`]: control point `c_k (x + i y)` in complex notation,
 /// height `z`, weight `w_k w`. The normal `s_u x s_v` points away from the axis
 /// where the profile rises (`dz/dv > 0`) on the `x > 0` side. Cost O(n).
+///
+/// # Errors
+/// `NurbsError::Shape` for an angle outside (0, 2 pi]; `NurbsError::NonFiniteControlPoint` if the profile has
+/// non-finite control points.
 pub fn revolve(profile: &NurbsCurve, angle: f64) -> Result<NurbsSurface> {
     let turn = arc(DVec3::ZERO, 1.0, 0.0, angle)?;
     let mut points = Vec::with_capacity(turn.control_points().len() * profile.control_points().len());
@@ -90,6 +104,9 @@ pub fn revolve(profile: &NurbsCurve, angle: f64) -> Result<NurbsSurface> {
 /// south pole to the north pole (in the `xz` plane) revolved about the `z`
 /// axis. Degrees (2, 2), 9 x 5 control points; poles at `v = 0` and `v = 1`.
 /// `K = 1/r^2`, `H = 1/r`. Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for a radius that is not finite and > 0 or a non-finite center.
 pub fn sphere(center: DVec3, radius: f64) -> Result<NurbsSurface> {
     check_finite("center", center)?;
     let half = arc(DVec3::ZERO, radius, -FRAC_PI_2, FRAC_PI_2)?;
@@ -103,6 +120,10 @@ pub fn sphere(center: DVec3, radius: f64) -> Result<NurbsSurface> {
 /// `K = cos theta / (r (R + r cos theta))`, principal curvatures `1/r` and
 /// `cos theta / (R + r cos theta)`. Degrees (2, 2), 9 x 9 control points.
 /// Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for radii that are not finite and > 0, a major radius not above the minor one, or a
+/// non-finite center.
 pub fn torus(center: DVec3, major: f64, minor: f64) -> Result<NurbsSurface> {
     check_finite("center", center)?;
     check_positive("minor radius", minor)?;
@@ -116,6 +137,9 @@ pub fn torus(center: DVec3, major: f64, minor: f64) -> Result<NurbsSurface> {
 /// Open cylinder of `radius` about the `z` axis from `base` to `base + height
 /// z`, outward normal. Degrees (2, 1); `v` runs from the bottom rim to the top
 /// rim. Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for a radius or height that is not finite and > 0 or a non-finite base.
 pub fn cylinder(base: DVec3, radius: f64, height: f64) -> Result<NurbsSurface> {
     check_positive("radius", radius)?;
     check_positive("height", height)?;
@@ -127,6 +151,9 @@ pub fn cylinder(base: DVec3, radius: f64, height: f64) -> Result<NurbsSurface> {
 /// `base + height z` (`v = 1`), outward normal. At the apex the surface is
 /// singular: frames there are flagged non-regular (see [`crate::frame`]).
 /// Degrees (2, 1). Cost O(1).
+///
+/// # Errors
+/// `NurbsError::Shape` for a radius or height that is not finite and > 0 or a non-finite base.
 pub fn cone(base: DVec3, radius: f64, height: f64) -> Result<NurbsSurface> {
     check_positive("radius", radius)?;
     check_positive("height", height)?;
@@ -136,6 +163,9 @@ pub fn cone(base: DVec3, radius: f64, height: f64) -> Result<NurbsSurface> {
 
 /// Bilinear patch through four corners: `S(0,0) = p00`, `S(1,0) = p10`,
 /// `S(0,1) = p01`, `S(1,1) = p11` (degrees (1, 1)). Cost O(1).
+///
+/// # Errors
+/// `NurbsError::NonFiniteControlPoint` for a non-finite corner.
 pub fn bilinear(p00: DVec3, p10: DVec3, p01: DVec3, p11: DVec3) -> Result<NurbsSurface> {
     let k = KnotVector::clamped_uniform(1, 2)?;
     NurbsSurface::non_rational(k.clone(), k, vec![p00, p01, p10, p11])

@@ -71,6 +71,10 @@ impl NurbsSurface {
     /// Builds a surface from knot vectors in `u` and `v`, a row-major control
     /// net (`count_u * count_v` points, see the type) and positive weights.
     /// Cost O(count_u count_v).
+    ///
+    /// # Errors
+    /// `NurbsError::Count` when `points` or `weights` do not have `count_u * count_v` entries;
+    /// `NurbsError::NonFiniteControlPoint`; `NurbsError::Weight` for a weight that is not finite and > 0.
     pub fn new(knots_u: KnotVector, knots_v: KnotVector, points: Vec<DVec3>, weights: Vec<f64>) -> Result<Self> {
         let expected = knots_u.control_count().saturating_mul(knots_v.control_count());
         check_count("control points (count_u * count_v)", expected, points.len())?;
@@ -79,6 +83,9 @@ impl NurbsSurface {
     }
 
     /// A polynomial tensor-product B-spline surface (all weights 1).
+    ///
+    /// # Errors
+    /// As [`NurbsSurface::new`] (`NurbsError::Count`, `NurbsError::NonFiniteControlPoint`).
     pub fn non_rational(knots_u: KnotVector, knots_v: KnotVector, points: Vec<DVec3>) -> Result<Self> {
         let weights = vec![1.0; points.len()];
         Self::new(knots_u, knots_v, points, weights)
@@ -87,6 +94,10 @@ impl NurbsSurface {
     /// A surface from a user control grid `grid[i][j]` (`i` along `u`) with
     /// weights of the same shape, and clamped uniform knots of the given
     /// degrees. Cost O(count_u count_v).
+    ///
+    /// # Errors
+    /// `NurbsError::Count` for ragged rows or weights that do not match the grid; the errors of
+    /// [`KnotVector::clamped_uniform`] and [`NurbsSurface::new`].
     pub fn from_grid(degree_u: usize, degree_v: usize, grid: &[Vec<DVec3>], weights: &[Vec<f64>]) -> Result<Self> {
         let count_u = grid.len();
         let count_v = grid.first().map_or(0, Vec::len);
@@ -161,6 +172,9 @@ impl NurbsSurface {
     /// The point `S(u, v)` (eq. 2.3-2.4; Piegl & Tiller A4.3). Finite
     /// parameters outside the domain are clamped into it; NaN and infinities
     /// give [`NurbsError::NonFiniteParameter`]. Cost O(p^2 + q^2 + p q).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u` or `v`.
     pub fn point(&self, u: f64, v: f64) -> Result<DVec3> {
         Ok(self.derivatives(u, v, 0)?.point)
     }
@@ -170,6 +184,10 @@ impl NurbsSurface {
     /// denominator of eq. 2.4 (Piegl & Tiller A3.6), then the quotient rule
     /// `S^(k,l) = (A^(k,l) - sum binom w^(i,j) S^(k-i,l-j)) / w` (A4.4).
     /// Cost O(p^2 + q^2 + p q (order + 1)^2), no allocation.
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u` or `v`; `NurbsError::InvalidOption`
+    /// (`order`) above 2.
     pub fn derivatives(&self, u: f64, v: f64, order: usize) -> Result<SurfaceDerivatives> {
         check_param("u", u)?;
         check_param("v", v)?;
@@ -184,6 +202,9 @@ impl NurbsSurface {
     /// `[S, s_u, s_v]` at `(u, v)`: the first-order case of
     /// [`Self::derivatives`] in a smaller return value, for the hot loops of
     /// callers that need no second derivatives. Cost O(p^2 + q^2 + p q).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u` or `v`.
     #[inline]
     pub fn point_and_tangents(&self, u: f64, v: f64) -> Result<[DVec3; 3]> {
         check_param("u", u)?;
@@ -198,6 +219,9 @@ impl NurbsSurface {
     /// point it is the limit from inside the domain along the iso-line through
     /// the point (see [`Self::limit_normal`]); zero if there is none.
     /// Cost O(p^2 + q^2 + p q).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter` for a NaN or infinite `u` or `v`.
     pub fn normal(&self, u: f64, v: f64) -> Result<DVec3> {
         let d = self.derivatives(u, v, 1)?;
         if let Some(n) = unit_normal(d.su, d.sv) {
@@ -303,12 +327,20 @@ impl NurbsSurface {
     /// The same surface with the knot `u` inserted `times` times in the `u`
     /// direction (Boehm, Piegl & Tiller A5.3): shape and parameterization are
     /// unchanged. Cost O(count_u count_v + times p count_v).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter`, or `NurbsError::KnotInsertion` when `u` is outside the domain or the
+    /// multiplicity would exceed the degree.
     pub fn insert_knot_u(&self, u: f64, times: usize) -> Result<Self> {
         self.map_columns(|column| insert_knot_line(&self.knots_u, column, u, times))
     }
 
     /// The same surface with the knot `v` inserted `times` times in the `v`
     /// direction (Boehm, Piegl & Tiller A5.3). Cost as [`Self::insert_knot_u`].
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteParameter`, or `NurbsError::KnotInsertion` when `v` is outside the domain or the
+    /// multiplicity would exceed the degree.
     pub fn insert_knot_v(&self, v: f64, times: usize) -> Result<Self> {
         self.map_rows(|row| insert_knot_line(&self.knots_v, row, v, times))
     }
@@ -316,12 +348,18 @@ impl NurbsSurface {
     /// The same surface with its degree in `u` raised by one, exactly (see
     /// [`crate::NurbsCurve::elevate_degree`]; needs clamped knots in `u`).
     /// Cost O(count_u count_v p).
+    ///
+    /// # Errors
+    /// `NurbsError::NotClamped` for unclamped knots; `NurbsError::Degree` beyond the maximal degree.
     pub fn elevate_degree_u(&self) -> Result<Self> {
         self.map_columns(|column| elevate_degree_line(&self.knots_u, column))
     }
 
     /// The same surface with its degree in `v` raised by one, exactly (needs
     /// clamped knots in `v`). Cost O(count_u count_v q).
+    ///
+    /// # Errors
+    /// `NurbsError::NotClamped` for unclamped knots; `NurbsError::Degree` beyond the maximal degree.
     pub fn elevate_degree_v(&self) -> Result<Self> {
         self.map_rows(|row| elevate_degree_line(&self.knots_v, row))
     }
@@ -352,6 +390,9 @@ impl NurbsSurface {
     /// The image of the surface under an affine map (map the control points,
     /// keep the weights). A map with negative determinant flips the normals.
     /// Cost O(n).
+    ///
+    /// # Errors
+    /// `NurbsError::NonFiniteControlPoint` when the map sends a control point to a non-finite position.
     pub fn transform(&self, map: &DAffine3) -> Result<Self> {
         let points = self.points.iter().map(|&p| map.transform_point3(p)).collect();
         Self::new(self.knots_u.clone(), self.knots_v.clone(), points, self.weights.clone())
@@ -359,6 +400,9 @@ impl NurbsSurface {
 
     /// The same surface with `u` and `v` swapped, which flips the normal
     /// (use it to turn inward normals outward). Cost O(n).
+    ///
+    /// # Errors
+    /// None for a valid surface (the result type is that of [`NurbsSurface::new`]).
     pub fn swap_uv(&self) -> Result<Self> {
         let (nu, nv) = (self.count_u(), self.count_v());
         let index = |k: usize| (k % nu) * nv + k / nu;

@@ -119,6 +119,10 @@ impl Default for AdaptiveOptions {
 /// Tessellates on a uniform `segments_u x segments_v` parameter grid.
 /// Cost O(segments_u segments_v (p q + p^2 + q^2)), parallel with the `rayon`
 /// feature.
+///
+/// # Errors
+/// `NurbsError::InvalidOption` (`segments_u`, `segments_v`) for a segment count outside 1..2^32;
+/// `NurbsError::Mesh` when the grid does not make a valid mesh.
 pub fn tessellate(surface: &NurbsSurface, options: &GridOptions) -> Result<Tessellation> {
     let us = uniform(surface.domain_u(), options.segments_u, "segments_u")?;
     let vs = uniform(surface.domain_v(), options.segments_v, "segments_v")?;
@@ -132,6 +136,10 @@ pub fn tessellate(surface: &NurbsSurface, options: &GridOptions) -> Result<Tesse
 /// and poles stay watertight. Cost O((segments_u + segments_v) s) evaluations
 /// for the search (`s` sample lines: 4 per knot span of the other direction)
 /// plus the grid.
+///
+/// # Errors
+/// `NurbsError::InvalidOption` (`chordal_tolerance` not > 0, `min_segments`);
+/// `NurbsError::ToleranceUnreachable` when the tolerance needs more than the allowed segments.
 pub fn tessellate_adaptive(surface: &NurbsSurface, options: &AdaptiveOptions) -> Result<Tessellation> {
     let tol = options.chordal_tolerance;
     if !(tol.is_finite() && tol > 0.0) {
@@ -156,6 +164,11 @@ pub fn tessellate_adaptive(surface: &NurbsSurface, options: &AdaptiveOptions) ->
 /// Tessellates on the tensor grid `us x vs` (each strictly increasing, finite,
 /// at least two values, clamped into the domain), refusing grids of more than
 /// `max_vertices` vertices. Cost as [`tessellate`].
+///
+/// # Errors
+/// `NurbsError::InvalidOption` (`u`, `v`) for fewer than two parameter values or values that do not increase
+/// strictly, (`segments`) when the grid gives no triangle; `NurbsError::NonFiniteParameter`;
+/// `NurbsError::Mesh` when the grid does not make a valid mesh.
 pub fn tessellate_parameters(
     surface: &NurbsSurface,
     us: &[f64],

@@ -32,6 +32,11 @@ impl Arap {
     /// Flattens every face isometrically and factors the cotangent system
     /// with one vertex (and every unreferenced vertex) pinned. Cost O(V + F)
     /// plus one sparse Cholesky.
+    ///
+    /// # Errors
+    /// `ParamError::NotADisk` unless the mesh is a topological disk; `ParamError::DegenerateFaces` for
+    /// zero-area faces under `DegeneratePolicy::Error`; `ParamError::Mesh` (`MeshError::NonManifold`, or
+    /// `MeshError::Solver` when the factorization fails).
     pub fn new(mesh: &TriMesh, degenerate: DegeneratePolicy) -> Result<Self> {
         require_disk(mesh)?;
         let ctx = WeightContext::new(mesh);
@@ -71,6 +76,11 @@ impl Arap {
     /// Runs `iterations` local/global steps from `start` (one UV per vertex),
     /// keeping the first pinned vertex where `start` has it. Fails rather
     /// than return non-finite coordinates.
+    ///
+    /// # Errors
+    /// `ParamError::Mesh` (`MeshError::Dimension`) when `start` does not have one entry per vertex,
+    /// (`MeshError::Solver`) when a solve fails; `ParamError::NonFinite` naming the first vertex whose
+    /// coordinates become non-finite.
     pub fn solve(&self, start: &[DVec2], iterations: usize) -> Result<Vec<DVec2>> {
         let n = start.len();
         if n != self.vertex_count {

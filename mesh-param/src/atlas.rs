@@ -211,6 +211,14 @@ impl Atlas {
 /// assert!(!a.charts[0].rect.meets(&a.charts[1].rect));
 /// # Ok::<(), mesh_param::ParamError>(())
 /// ```
+///
+/// # Errors
+/// `ParamError::InvalidOption` for `boundary` (a fixed boundary: an atlas places boundaries itself),
+/// `max_area_distortion` (not finite and >= 1), `margin`, `max_chart_faces` (0), the method's own options
+/// (`lambda/mu`, `iterations`, `method`), and `sizes` when the charts cannot be packed; `ParamError::Mesh`
+/// (`MeshError::NonManifold`) when the mesh is not an oriented manifold; the errors of each chart's
+/// flattening (`ParamError::DegenerateFaces`, `ParamError::NonFinite`, `ParamError::Mesh` with
+/// `MeshError::Solver`).
 pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
     if matches!(options.boundary, BoundaryMap::Fixed(_)) {
         return Err(ParamError::InvalidOption {

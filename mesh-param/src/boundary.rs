@@ -81,6 +81,9 @@ pub fn circle(mesh: &TriMesh, boundary: &[VertexId], spacing: Spacing) -> Vec<DV
 
 /// Boundary vertices placed on the unit square (see [`BoundaryMap::Square`]).
 /// O(n).
+///
+/// # Errors
+/// `ParamError::InvalidOption` (`boundary`) for a loop of fewer than 4 vertices.
 pub fn square(mesh: &TriMesh, boundary: &[VertexId]) -> Result<Vec<DVec2>> {
     let n = boundary.len();
     if n < 4 {

@@ -45,6 +45,10 @@ impl CutMesh {
 /// Cuts `mesh` into a topological disk (see the module documentation).
 /// Needs a manifold mesh with one connected component; a disk is returned
 /// unchanged with an empty seam. Cost O((V + F) log V) (Dijkstra and a sort).
+///
+/// # Errors
+/// `ParamError::Mesh` (`MeshError::NonManifold`) when the mesh is not an oriented manifold;
+/// `ParamError::NotADisk` for a mesh of several components, or one that is still not a disk after cutting.
 pub fn cut_to_disk(mesh: &TriMesh) -> Result<CutMesh> {
     let topology = Topology::of(mesh)?;
     if topology.components != 1 {

@@ -179,6 +179,11 @@ pub fn singular_values_2x2(m: [[f64; 2]; 2]) -> [f64; 2] {
 /// area, flipped and collapsed faces, and the bijectivity check (boundary
 /// loops simple, see [`crate::bijectivity`]). Needs a manifold mesh (for the
 /// boundary loops). O(V + F) plus the boundary check.
+///
+/// # Errors
+/// `ParamError::Mesh` (`MeshError::Dimension`) when `uv` does not have one entry per vertex,
+/// (`MeshError::NonManifold`) when the mesh is not an oriented manifold; `ParamError::NonFinite` naming a
+/// vertex with non-finite coordinates.
 pub fn distortion(mesh: &TriMesh, uv: &[DVec2]) -> Result<DistortionReport> {
     if uv.len() != mesh.vertex_count() {
         return Err(MeshError::Dimension(format!("{} UVs for {} vertices", uv.len(), mesh.vertex_count())).into());

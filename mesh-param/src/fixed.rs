@@ -79,6 +79,12 @@ impl FixedBoundarySolver {
     /// Assembles eq. 2.13 with `weights`, fixes the `constrained` vertices
     /// (which must include every boundary vertex for a well-posed system) and
     /// factors the rest.
+    ///
+    /// # Errors
+    /// `ParamError::InvalidOption` (`constrained`) when no vertex is fixed or a fixed vertex is listed twice;
+    /// `ParamError::Mesh` (`MeshError::Dimension`) for a fixed vertex out of range,
+    /// (`MeshError::NonManifold`), or (`MeshError::Solver`) when the factorization fails;
+    /// `ParamError::DegenerateFaces` for zero-area faces under `DegeneratePolicy::Error`.
     pub fn new<W: Weights + ?Sized>(
         mesh: &TriMesh,
         weights: &W,
@@ -130,6 +136,11 @@ impl FixedBoundarySolver {
     /// right-hand sides of the one factorization. Fails rather than return a
     /// non-finite coordinate. Cost: one pair of sparse triangular solves
     /// with two columns, O(nnz of the factor).
+    ///
+    /// # Errors
+    /// `ParamError::Mesh` (`MeshError::Dimension`) when `positions` does not have one entry per fixed vertex,
+    /// (`MeshError::Solver`) when the solve fails; `ParamError::InvalidOption` (`boundary`) for a non-finite
+    /// fixed position.
     pub fn solve(&self, positions: &[DVec2]) -> Result<Vec<DVec2>> {
         if positions.len() != self.constrained {
             return Err(MeshError::Dimension(format!(

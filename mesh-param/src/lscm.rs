@@ -46,6 +46,10 @@ pub struct LscmMap {
 /// A = u^T S v = 1/2 sum over boundary edges i -> j of (u_i v_j - u_j v_i).
 /// Symmetric positive semi-definite; its kernel holds the similarities.
 /// O(V + E).
+///
+/// # Errors
+/// `ParamError::Mesh` (`MeshError::NonManifold`) when the boundary loops of a non-manifold mesh cannot be
+/// traced.
 pub fn conformal_energy_matrix(ctx: &WeightContext<'_>) -> Result<CsMat<f64>> {
     let n = ctx.mesh().vertex_count();
     let conn = ctx.connectivity();
@@ -105,6 +109,12 @@ pub fn conformal_energy_matrix(ctx: &WeightContext<'_>) -> Result<CsMat<f64>> {
 /// free block of [`conformal_energy_matrix`] (the pins and unreferenced
 /// vertices are fixed). A planar mesh is reproduced up
 /// to a similarity. Cost: O(V + F) assembly plus one sparse factorization.
+///
+/// # Errors
+/// `ParamError::NotADisk` unless the mesh is a topological disk; `ParamError::DegenerateFaces` for zero-area
+/// faces under `DegeneratePolicy::Error`; `ParamError::InvalidOption` (`pins`) for pins on the same vertex,
+/// at the same or non-finite positions, or out of range; `ParamError::Mesh` (`MeshError::Solver`) when the
+/// solve fails.
 pub fn lscm(mesh: &TriMesh, options: &LscmOptions) -> Result<LscmMap> {
     let boundary = require_disk(mesh)?;
     let ctx = WeightContext::new(mesh);

@@ -67,6 +67,10 @@ pub struct Packing {
 /// cannot). Cost: O(n s) per trial packing with s skyline segments (s <= n,
 /// usually far fewer), about 20 trials; a single rectangle is scaled in
 /// closed form to span the square but the margin.
+///
+/// # Errors
+/// `ParamError::InvalidOption` (`margin`) unless 0 <= margin < 0.5, (`sizes`) for a rectangle with a
+/// non-finite or negative size or rectangles that do not fit the unit square.
 pub fn pack_rectangles(sizes: &[DVec2], margin: f64) -> Result<Packing> {
     if !(margin.is_finite() && (0.0..0.5).contains(&margin)) {
         return Err(ParamError::InvalidOption {

@@ -164,6 +164,12 @@ pub struct Parameterization {
 /// assert!(p.report.summary.bijective);
 /// # Ok::<(), mesh_param::ParamError>(())
 /// ```
+///
+/// # Errors
+/// `ParamError::InvalidOption` for the method's options (`lambda/mu`, `iterations`, `method`) or a fixed
+/// boundary that does not list every boundary vertex (`boundary`); `ParamError::NotADisk` unless the mesh is
+/// a topological disk; `ParamError::DegenerateFaces`, `ParamError::NonFinite` and `ParamError::Mesh`
+/// (`MeshError::Solver`) from the solve.
 pub fn parameterize(mesh: &TriMesh, options: &Options) -> Result<Parameterization> {
     let (uv, degenerate_faces) = map_disk(mesh, options)?;
     let report = distortion(mesh, &uv)?;
@@ -271,6 +277,9 @@ impl CutParameterization {
 /// Cuts a connected manifold into a disk if it is not one ([`cut_to_disk`])
 /// and parameterizes the disk. [`BoundaryMap::Fixed`] refers to vertices of
 /// the cut mesh. Cost: that of [`cut_to_disk`] plus [`parameterize`].
+///
+/// # Errors
+/// The errors of [`crate::cut_to_disk`] and [`parameterize`].
 pub fn parameterize_cut(mesh: &TriMesh, options: &Options) -> Result<CutParameterization> {
     let cut = cut_to_disk(mesh)?;
     let param = parameterize(&cut.mesh, options)?;

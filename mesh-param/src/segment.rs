@@ -27,6 +27,10 @@ use crate::error::{ParamError, Result};
 /// mesh. Cost: one Dijkstra per seed over the faces it takes (O(F log F)
 /// per component when regions are even), a heap of the farthest faces, and
 /// O(F) per pass of the border smoothing.
+///
+/// # Errors
+/// `ParamError::Mesh` (`MeshError::NonManifold`) when the mesh is not an oriented manifold;
+/// `ParamError::InvalidOption` (`max_chart_faces`) for `Some(0)`.
 pub fn chart_labels(mesh: &TriMesh, max_faces: Option<usize>) -> Result<(Vec<u32>, usize)> {
     let conn = mesh.manifold_connectivity()?;
     let components = conn.components();
@@ -179,6 +183,10 @@ impl Dual {
 /// in order of first use. A vertex gets one copy per fan of the chart's
 /// faces around it (corners joined across edges inside the chart, union-find),
 /// so every piece is a manifold when the input is. O(F α(F)).
+///
+/// # Errors
+/// `ParamError::Mesh` (`MeshError::NonManifold`) when the mesh is not an oriented manifold,
+/// (`MeshError::Dimension`) when `labels` does not have one entry per face or a label is not below `count`.
 pub fn chart_pieces(mesh: &TriMesh, labels: &[u32], count: usize) -> Result<Vec<SubMesh>> {
     let conn = mesh.manifold_connectivity()?;
     if labels.len() != mesh.face_count() || labels.iter().any(|&l| l as usize >= count) {

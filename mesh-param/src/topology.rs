@@ -22,6 +22,9 @@ pub struct Topology {
 impl Topology {
     /// Topology of `mesh`. Fails with [`mesh_core::MeshError::NonManifold`]
     /// (wrapped) on non-manifold input. O(V + F), cached by the mesh.
+    ///
+    /// # Errors
+    /// `ParamError::Mesh` (`MeshError::NonManifold`) when the mesh is not an oriented manifold.
     pub fn of(mesh: &TriMesh) -> Result<Self> {
         let conn = mesh.manifold_connectivity()?;
         let boundary_loops = conn.boundary_loops()?.len();
@@ -55,6 +58,10 @@ impl Topology {
 /// The boundary loop of a disk, or [`ParamError::NotADisk`] saying what the
 /// mesh is instead (non-manifold input gives the wrapped mesh error listing
 /// the defects). O(V + F).
+///
+/// # Errors
+/// `ParamError::Mesh` (`MeshError::NonManifold`) when the mesh is not an oriented manifold;
+/// `ParamError::NotADisk` describing the topology found otherwise.
 pub fn require_disk(mesh: &TriMesh) -> Result<&BoundaryLoop> {
     let topology = Topology::of(mesh)?;
     if !topology.is_disk() {

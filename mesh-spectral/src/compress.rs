@@ -31,6 +31,11 @@ pub struct CompressionError {
 /// Reconstructs `mesh` from its first `keep` harmonic coefficients and
 /// reports the error. Vertices excluded by the eigensolver keep their
 /// position. O(n k).
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`keep`) when `keep` exceeds the basis size; `SpectralError::Dimension`
+/// when the basis was computed for another vertex count; `SpectralError::Mesh` when the result does not make
+/// a valid mesh.
 pub fn compress(mesh: &TriMesh, harmonics: &ManifoldHarmonics, keep: usize) -> Result<(TriMesh, CompressionError)> {
     check_keep(harmonics, keep)?;
     let mut positions = Vec::new();
@@ -41,6 +46,10 @@ pub fn compress(mesh: &TriMesh, harmonics: &ManifoldHarmonics, keep: usize) -> R
 
 /// The error for each count in `keeps` (any order, each `<= k`), computed
 /// incrementally from one forward transform: O(n k) in total.
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`keep`) when a count exceeds the basis size; `SpectralError::Dimension`
+/// when the basis was computed for another vertex count.
 pub fn compression_curve(
     mesh: &TriMesh,
     harmonics: &ManifoldHarmonics,

@@ -98,6 +98,11 @@ impl Transfer {
 
 /// Filters point positions (one per vertex) with `transfer`. Vertices
 /// excluded by the eigensolver (no mass) keep their position. O(n k).
+///
+/// # Errors
+/// `SpectralError::InvalidOption` for an invalid transfer function (`cutoff`, `order`, `band`, `gain`) or a
+/// non-finite position (`positions`); `SpectralError::Dimension` when `positions` does not have one entry per
+/// vertex of the basis.
 pub fn filter(harmonics: &ManifoldHarmonics, positions: &[DVec3], transfer: &Transfer) -> Result<Vec<DVec3>> {
     transfer.validate()?;
     filter_with(harmonics, positions, |i, omega| transfer.gain(i, omega), transfer.beyond())
@@ -105,6 +110,10 @@ pub fn filter(harmonics: &ManifoldHarmonics, positions: &[DVec3], transfer: &Tra
 
 /// Filters with any gain function `gain(index, omega)` and gain `beyond`
 /// for the detail outside the basis. Non-finite gains are refused.
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`gain`) for a non-finite gain, (`positions`) for a non-finite position;
+/// `SpectralError::Dimension` when `positions` does not have one entry per vertex of the basis.
 pub fn filter_with(
     harmonics: &ManifoldHarmonics,
     positions: &[DVec3],
@@ -135,6 +144,9 @@ pub fn filter_with(
 }
 
 /// [`filter`] applied to a mesh's vertices; the connectivity is unchanged.
+///
+/// # Errors
+/// The errors of [`filter`], and `SpectralError::Mesh` when the filtered positions do not make a valid mesh.
 pub fn filter_mesh(mesh: &TriMesh, harmonics: &ManifoldHarmonics, transfer: &Transfer) -> Result<TriMesh> {
     let p = filter(harmonics, mesh.positions(), transfer)?;
     Ok(TriMesh::new(p, mesh.faces().to_vec())?)

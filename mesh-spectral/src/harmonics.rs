@@ -50,6 +50,12 @@ impl ManifoldHarmonics {
     /// (cut out with `TriMesh::largest_component`, so the operator is only
     /// assembled there; the harmonics are zero elsewhere). Errors: empty
     /// mesh, `k` above the number of vertices with mass, solver failures.
+    ///
+    /// # Errors
+    /// `SpectralError::Mesh` (`MeshError::Empty`) for a mesh without faces; the errors of
+    /// [`crate::laplace_beltrami`] and [`crate::eigenpairs`] (`SpectralError::TooManyPairs`,
+    /// `SpectralError::NotConverged`, ...); `SpectralError::InvalidOption` (`component`) for an invalid
+    /// component choice.
     pub fn new(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> Result<Self> {
         let largest = options.eigen.component == ComponentSelection::Largest;
         if largest && mesh.connectivity().components().count > 1 {
@@ -87,6 +93,10 @@ impl ManifoldHarmonics {
     /// A basis from eigenpairs computed elsewhere (for instance with
     /// [`crate::eigenpairs`] on custom matrices) and the diagonal of the mass
     /// matrix they are orthonormal for.
+    ///
+    /// # Errors
+    /// `SpectralError::Dimension` when `mass` does not have one entry per row of the eigenvectors;
+    /// `SpectralError::InvalidMatrix` (`M`) for a mass that is negative or not finite.
     pub fn from_eigenpairs(pairs: Eigenpairs, mass: Vec<f64>) -> Result<Self> {
         if mass.len() != pairs.vertex_count() {
             return Err(SpectralError::Dimension(format!(
@@ -109,6 +119,11 @@ impl ManifoldHarmonics {
 
     /// The mass diagonal and the Laplacian of `mesh` for the given options,
     /// as used by [`ManifoldHarmonics::new`] (to compute pairs yourself).
+    ///
+    /// # Errors
+    /// `SpectralError::Mesh` (`MeshError::Empty`) for a mesh without faces; the errors of the intrinsic
+    /// Delaunay triangulation when it is chosen; `SpectralError::InvalidMatrix` for masses that are not
+    /// positive and finite.
     pub fn operators(mesh: &TriMesh, options: &HarmonicsOptions) -> Result<(CsMat<f64>, Vec<f64>)> {
         laplace_beltrami(mesh, options.laplacian, options.mass)
     }
@@ -158,6 +173,10 @@ impl ManifoldHarmonics {
 
     /// Forward transform of a scalar field: `c = Phi^T M f` (k values).
     /// O(n k).
+    ///
+    /// # Errors
+    /// `SpectralError::Dimension` when `f` does not have one value per vertex; `SpectralError::InvalidOption`
+    /// (`field`) for a non-finite value.
     pub fn forward(&self, f: &[f64]) -> Result<Vec<f64>> {
         let c = self.forward_columns(self.field(f)?.as_ref())?;
         Ok(c.col_as_slice(0).to_vec())
@@ -165,6 +184,10 @@ impl ManifoldHarmonics {
 
     /// Inverse transform: `f = sum_i c_i phi_i` for the first
     /// `coefficients.len() <= k` harmonics. O(n k).
+    ///
+    /// # Errors
+    /// `SpectralError::Dimension` when there are more coefficients than harmonics;
+    /// `SpectralError::InvalidOption` (`coefficients`) for a non-finite value.
     pub fn inverse(&self, coefficients: &[f64]) -> Result<Vec<f64>> {
         let c = MatRef::from_column_major_slice(coefficients, coefficients.len(), 1);
         let f = self.inverse_columns(c)?;
@@ -173,6 +196,10 @@ impl ManifoldHarmonics {
 
     /// Forward transform of the geometry (or any vector field): one
     /// coefficient vector per harmonic, `c_i = sum_v phi_i(v) m_v p_v`.
+    ///
+    /// # Errors
+    /// `SpectralError::Dimension` when `points` does not have one entry per vertex;
+    /// `SpectralError::InvalidOption` (`points`) for a non-finite point.
     pub fn forward_points(&self, points: &[DVec3]) -> Result<Vec<DVec3>> {
         let c = self.forward_columns(self.points(points)?.as_ref())?;
         Ok((0..c.nrows()).map(|i| DVec3::new(c[(i, 0)], c[(i, 1)], c[(i, 2)])).collect())
@@ -180,6 +207,10 @@ impl ManifoldHarmonics {
 
     /// Inverse transform of vector coefficients: `p = sum_i c_i phi_i` over
     /// the first `coefficients.len() <= k` harmonics.
+    ///
+    /// # Errors
+    /// `SpectralError::Dimension` when there are more coefficients than harmonics;
+    /// `SpectralError::InvalidOption` (`coefficients`) for a non-finite value.
     pub fn inverse_points(&self, coefficients: &[DVec3]) -> Result<Vec<DVec3>> {
         let c = Mat::from_fn(coefficients.len(), 3, |i, j| coefficients[i][j]);
         let p = self.inverse_columns(c.as_ref())?;

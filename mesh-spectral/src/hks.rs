@@ -16,6 +16,9 @@ use crate::error::{Result, SpectralError};
 
 /// `HKS(x, t)` for every vertex and every time: one vector of per-vertex
 /// values per entry of `times`. O(n k |times|).
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`times`) for a time that is negative or not finite.
 pub fn heat_kernel_signature(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<Vec<f64>>> {
     if let Some(bad) = times.iter().find(|t| !(t.is_finite() && **t >= 0.0)) {
         return Err(SpectralError::InvalidOption { name: "times", reason: format!("{bad} is not a finite time >= 0") });
@@ -42,6 +45,9 @@ pub fn heat_kernel_signature(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<Ve
 /// truncated signature is meaningful (Sun et al. 2009, section 4):
 /// `t_min = 4 ln 10 / lambda_max` to `t_max = 4 ln 10 / lambda_1`, with
 /// `lambda_1` the smallest eigenvalue above the rounding level of zero.
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`count`) for a count of 0 or eigenpairs without a positive eigenvalue.
 pub fn hks_times(pairs: &Eigenpairs, count: usize) -> Result<Vec<f64>> {
     let largest = pairs.values.iter().copied().fold(0.0, f64::max);
     let threshold = 1e-8 * largest;

@@ -162,6 +162,10 @@ pub struct Pencil {
 /// [`LaplacianKind::resolve`]. Isolated vertices get a zero row and zero
 /// mass (the eigensolver excludes them). O(V + F), plus the edge flips for
 /// the intrinsic Delaunay Laplacian.
+///
+/// # Errors
+/// `SpectralError::Mesh` (`MeshError::Empty`) for a mesh without faces; the errors of the intrinsic Delaunay
+/// triangulation (`LaplacianKind::IntrinsicDelaunay`).
 pub fn pencil(mesh: &TriMesh, laplacian: LaplacianKind, mass: LumpedMass) -> Result<Pencil> {
     if mesh.face_count() == 0 {
         return Err(SpectralError::Mesh(mesh_core::MeshError::Empty));
@@ -195,6 +199,9 @@ pub fn pencil(mesh: &TriMesh, laplacian: LaplacianKind, mass: LumpedMass) -> Res
 /// semi-definite, CSR) and the diagonal of `M`; [`pencil`] without the
 /// report. O(V + F), plus the edge flips for the intrinsic Delaunay
 /// Laplacian.
+///
+/// # Errors
+/// As [`pencil`].
 pub fn laplace_beltrami(mesh: &TriMesh, laplacian: LaplacianKind, mass: LumpedMass) -> Result<(CsMat<f64>, Vec<f64>)> {
     let p = pencil(mesh, laplacian, mass)?;
     Ok((p.laplacian, p.mass))

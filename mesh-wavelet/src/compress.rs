@@ -70,6 +70,10 @@ impl Multiresolution {
     /// [`CompressOptions`]) and reports the error of the reconstruction
     /// against this representation's own synthesis. Cost O(n) (selection by
     /// quickselect).
+    ///
+    /// # Errors
+    /// `WaveletError::InvalidOption` (`keep`) when `options.keep` is not a fraction in [0, 1];
+    /// `WaveletError::Mesh` if a synthesized level does not make a valid mesh (non-finite positions).
     pub fn compress(&self, options: &CompressOptions) -> Result<Compression> {
         check_fraction(options.keep)?;
         let mut scored = self.scored_coefficients();
@@ -92,6 +96,10 @@ impl Multiresolution {
 
     /// Errors for several kept fractions at once, sharing one sort of the
     /// coefficients. Cost O(n log n + k n) for k fractions.
+    ///
+    /// # Errors
+    /// `WaveletError::InvalidOption` (`keep`) when a fraction is not in [0, 1]; `WaveletError::Mesh` if a
+    /// synthesized level does not make a valid mesh.
     pub fn compression_curve(&self, fractions: &[f64]) -> Result<Vec<CompressionPoint>> {
         for &f in fractions {
             check_fraction(f)?;

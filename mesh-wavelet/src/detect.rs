@@ -41,11 +41,19 @@ impl Default for DetectOptions {
 /// input index of every vertex ([`Hierarchy::to_input`]); its finest faces
 /// are the input faces, in order.
 ///
-/// Errors: [`MeshError::Empty`], [`MeshError::NonManifold`], and
+/// Cost O(F) per level.
+///
+/// # Errors
+/// [`WaveletError::InvalidOption`] (`max_levels`) when `max_levels` is 0;
+/// [`MeshError::Empty`] for a mesh without faces; [`MeshError::NonManifold`]
+/// when the mesh is not an oriented manifold; and
 /// [`WaveletError::NoSubdivisionConnectivity`] when not even one split can
 /// be reversed (or a vertex is referenced by no face), with the reason.
-/// Cost O(F) per level.
 pub fn detect(mesh: &TriMesh, options: &DetectOptions) -> Result<Hierarchy> {
+    if options.max_levels == 0 {
+        let reason = "0 levels allowed: at least one 4-to-1 split must be looked for".into();
+        return Err(WaveletError::InvalidOption { name: "max_levels", reason });
+    }
     if mesh.face_count() == 0 {
         return Err(MeshError::Empty.into());
     }

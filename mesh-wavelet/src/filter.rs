@@ -149,6 +149,9 @@ impl LevelFilter {
     /// `data[..n_j]` holds the coarse approximation `A v^{j+1}` and
     /// `data[n_j..n_{j+1}]` the wavelet coefficients `B v^{j+1}`.
     /// Cost O(n_{j+1}).
+    ///
+    /// # Errors
+    /// `WaveletError::Dimension` when `data` has fewer values than this level has fine vertices.
     pub fn analyze<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
         let (even, odd) = self.split(data)?;
         if let Some((alpha, gamma)) = &self.smooth {
@@ -180,6 +183,9 @@ impl LevelFilter {
 
     /// One synthesis step in place, the exact inverse of
     /// [`LevelFilter::analyze`]: `v^{j+1} = P v^j + Q w^j`. Cost O(n_{j+1}).
+    ///
+    /// # Errors
+    /// `WaveletError::Dimension` when `data` has fewer values than this level has fine vertices.
     pub fn synthesize<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
         let (even, odd) = self.split(data)?;
         if let Some(u) = &self.update {
@@ -224,6 +230,10 @@ impl FilterBank {
     /// Builds the lifting steps of all levels. Every K^j below the finest
     /// must be an oriented manifold ([`mesh_core::MeshError::NonManifold`]
     /// otherwise). Cost O(n_J).
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` or `WaveletError::Mesh` (`MeshError::NonManifold`) only for a
+    /// hierarchy that was not built by this crate's constructors; none for a valid hierarchy.
     pub fn new(hierarchy: &Hierarchy, scheme: Scheme, kind: WaveletKind) -> Result<Self> {
         let levels = (0..hierarchy.levels())
             .map(|j| LevelFilter::new(hierarchy.topology(j)?, hierarchy.parents(j)?, scheme, kind))
@@ -273,6 +283,9 @@ impl FilterBank {
     /// Full analysis in place (finest to coarsest): the values of K^J in
     /// hierarchical order become `[v^0 | w^0 | w^1 | ... | w^{J-1}]`, the
     /// base mesh followed by the wavelet coefficients of eq. 2.39. Cost O(n_J).
+    ///
+    /// # Errors
+    /// `WaveletError::Dimension` when `data` has fewer values than the finest level has vertices.
     pub fn analyze<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
         self.check_len(data, self.levels())?;
         for l in self.levels.iter().rev() {
@@ -284,6 +297,11 @@ impl FilterBank {
     /// Synthesis in place from `[v^0 | w^0 | ... ]` up to level `level`
     /// (`data[..n_level]` then holds `v^level`, the level-of-detail mesh of
     /// that level). Cost O(n_level).
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level > levels()`;
+    /// `WaveletError::Dimension` when `data` does not have one value per vertex
+    /// of level `level` at least.
     pub fn synthesize_to<T: Coefficient>(&self, data: &mut [T], level: usize) -> Result<()> {
         if level > self.levels() {
             return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
@@ -296,6 +314,9 @@ impl FilterBank {
     }
 
     /// Full synthesis in place, the inverse of [`FilterBank::analyze`].
+    ///
+    /// # Errors
+    /// `WaveletError::Dimension` when `data` has fewer values than the finest level has vertices.
     pub fn synthesize<T: Coefficient>(&self, data: &mut [T]) -> Result<()> {
         self.synthesize_to(data, self.levels())
     }

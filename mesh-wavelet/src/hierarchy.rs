@@ -83,6 +83,11 @@ impl Hierarchy {
     /// Splits the base mesh K^0 (`vertex_count` vertices, `faces`, an oriented
     /// manifold) `levels` times with the vertex and face order of
     /// [`mesh_core::shapes::midpoint_subdivide`]. Cost O(4^levels F_0).
+    ///
+    /// # Errors
+    /// `MeshError::Empty` without faces; the `MeshError` of `TriMesh::new` for faces out of range or
+    /// repeating a vertex; `WaveletError::InvalidOption` (`levels`) when the finest level would exceed
+    /// `MAX_FACES`; `MeshError::NonManifold` when the base mesh is not an oriented manifold.
     pub fn from_base(vertex_count: usize, faces: &[[u32; 3]], levels: usize) -> Result<Self> {
         if faces.is_empty() {
             return Err(MeshError::Empty.into());
@@ -120,12 +125,18 @@ impl Hierarchy {
     }
 
     /// Number of vertices `n_j` of K^j, `j <= J`.
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level > levels()`.
     pub fn vertex_count(&self, level: usize) -> Result<usize> {
         self.check_level(level, self.levels())?;
         Ok(self.counts[level])
     }
 
     /// Faces of K^j (`j <= J`) over the first `n_j` hierarchical vertices.
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level > levels()`.
     pub fn faces(&self, level: usize) -> Result<&[[u32; 3]]> {
         self.check_level(level, self.levels())?;
         Ok(&self.faces[level])
@@ -133,6 +144,9 @@ impl Hierarchy {
 
     /// For `level < J`: the endpoints (in K^level) of the edge split by odd
     /// vertex `n_level + i`, for each `i`, in the sorted order of the edges.
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level` is 0 or greater than `levels()`.
     pub fn parents(&self, level: usize) -> Result<&[[u32; 2]]> {
         if level >= self.levels() {
             return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
@@ -177,6 +191,9 @@ impl Hierarchy {
     /// Where each vertex of K^j goes in an output mesh of level j: vertices
     /// keep the relative order they have in the input mesh, so the output at
     /// level J has exactly the input order. Cost O(n_J).
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level > levels()`.
     pub fn output_order(&self, level: usize) -> Result<Vec<u32>> {
         self.check_level(level, self.levels())?;
         Ok(self.order_of(level))

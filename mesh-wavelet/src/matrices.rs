@@ -124,6 +124,9 @@ fn split_rows(m: &CsMat<f64>, at: usize) -> (CsMat<f64>, CsMat<f64>) {
 /// has unit area, so each of the `faces` of level `level` has area `4^-level`
 /// (`A/6` on the diagonal per incident face, `A/12` per face off it).
 /// Errors when a face refers to a vertex beyond `vertex_count`. Cost O(F).
+///
+/// # Errors
+/// `WaveletError::Dimension` when a face refers to a vertex beyond `vertex_count`.
 pub fn inner_product_matrix(vertex_count: usize, faces: &[[u32; 3]], level: usize) -> Result<CsMat<f64>> {
     if let Some(v) = faces.iter().flatten().find(|&&v| v as usize >= vertex_count) {
         return Err(WaveletError::Dimension(format!("a face refers to vertex {v} of {vertex_count}")));

@@ -64,6 +64,10 @@ impl Multiresolution {
     /// the filter bank and runs the analysis. Errors when the mesh is empty,
     /// non-manifold or has no subdivision connectivity
     /// ([`WaveletError::NoSubdivisionConnectivity`]). Cost O(n).
+    ///
+    /// # Errors
+    /// The errors of `detect` (`WaveletError::InvalidOption` for `max_levels` 0, `MeshError::Empty`,
+    /// `MeshError::NonManifold`, `WaveletError::NoSubdivisionConnectivity`).
     pub fn analyze(mesh: &TriMesh, options: &Options) -> Result<Self> {
         let hierarchy = detect(mesh, &DetectOptions { max_levels: options.max_levels })?;
         let bank = FilterBank::new(&hierarchy, options.scheme, options.wavelet)?;
@@ -72,6 +76,11 @@ impl Multiresolution {
 
     /// Analysis of `positions` (in input order, [`Hierarchy::to_input`]) on a
     /// known hierarchy with a prebuilt filter bank of that hierarchy. Cost O(n).
+    ///
+    /// # Errors
+    /// `WaveletError::Dimension` when `positions` does not have one entry per vertex of the finest level or
+    /// the bank was built for another hierarchy; `MeshError::NonFinitePosition` for a NaN or infinite
+    /// position.
     pub fn from_parts(hierarchy: Arc<Hierarchy>, bank: Arc<FilterBank>, positions: &[DVec3]) -> Result<Self> {
         let n = hierarchy.count(hierarchy.levels());
         if positions.len() != n || bank.levels() != hierarchy.levels() || (bank.levels() > 0 && bank.len() != n) {
@@ -111,6 +120,10 @@ impl Multiresolution {
     /// Multiresolution editing: replaces the base positions (in the vertex
     /// order of `level(0)`), keeping every wavelet coefficient, so the details
     /// follow the new coarse shape on synthesis. Cost O(n_0).
+    ///
+    /// # Errors
+    /// `WaveletError::Dimension` when `positions` does not have one entry per base vertex;
+    /// `MeshError::NonFinitePosition` for a NaN or infinite position.
     pub fn set_base_positions(&mut self, positions: &[DVec3]) -> Result<()> {
         let n0 = self.hierarchy.count(0);
         if positions.len() != n0 {
@@ -129,12 +142,18 @@ impl Multiresolution {
 
     /// The wavelet coefficients `w^j` (one per odd vertex of K^{j+1}, in
     /// hierarchical order), for `j < J`.
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level` is 0 or greater than `levels()`.
     pub fn coefficients(&self, level: usize) -> Result<&[DVec3]> {
         let r = self.coefficient_range(level)?;
         Ok(&self.data[r])
     }
 
     /// Mutable wavelet coefficients of level `j < J` (to edit or threshold).
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level` is 0 or greater than `levels()`.
     pub fn coefficients_mut(&mut self, level: usize) -> Result<&mut [DVec3]> {
         let r = self.coefficient_range(level)?;
         Ok(&mut self.data[r])
@@ -162,6 +181,9 @@ impl Multiresolution {
 
     /// Positions of K^j (hierarchical order): synthesis up to level j, the
     /// coarse approximation `v^j` of the analysis. Cost O(n_j).
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level > levels()`.
     pub fn level_positions(&self, level: usize) -> Result<Vec<DVec3>> {
         if level > self.levels() {
             return Err(WaveletError::LevelOutOfRange { level, levels: self.levels() });
@@ -174,6 +196,10 @@ impl Multiresolution {
     /// The level-of-detail mesh K^j with positions `v^j`. Its vertices keep
     /// their relative input order ([`Hierarchy::output_order`]); at level J
     /// this is the input mesh itself: same vertex order, same faces. Cost O(n_j).
+    ///
+    /// # Errors
+    /// `WaveletError::LevelOutOfRange` when `level > levels()`; `WaveletError::Mesh` when edited coefficients
+    /// made a position non-finite.
     pub fn level(&self, level: usize) -> Result<TriMesh> {
         let positions = self.level_positions(level)?;
         Ok(self.mesh_from(level, &positions)?)
@@ -181,6 +207,9 @@ impl Multiresolution {
 
     /// Full synthesis: the mesh at level J (the input, up to rounding, until
     /// coefficients or base are edited). Cost O(n).
+    ///
+    /// # Errors
+    /// `WaveletError::Mesh` when edited coefficients made a position non-finite.
     pub fn synthesize(&self) -> Result<TriMesh> {
         self.level(self.levels())
     }
@@ -188,6 +217,9 @@ impl Multiresolution {
     /// Synthesis from a subset of coefficients: `keep(j, i)` decides whether
     /// coefficient `i` of level `j` takes part (the others count as zero).
     /// Keeping none gives the scheme's subdivision of the base mesh. Cost O(n).
+    ///
+    /// # Errors
+    /// `WaveletError::Mesh` when edited coefficients made a position non-finite.
     pub fn reconstruct(&self, mut keep: impl FnMut(usize, usize) -> bool) -> Result<TriMesh> {
         let mut data = self.data.clone();
         for j in 0..self.levels() {

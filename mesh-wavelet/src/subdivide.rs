@@ -23,6 +23,10 @@ use crate::topology::{manifold_topology, Topology};
 /// kept where they are. Errors: [`MeshError::Empty`] without faces,
 /// [`crate::WaveletError::InvalidOption`] beyond [`crate::hierarchy::MAX_FACES`].
 /// Cost O(4^levels F), one connectivity build per level.
+///
+/// # Errors
+/// `MeshError::Empty` without faces; `WaveletError::InvalidOption` (`levels`) when the result would exceed
+/// `MAX_FACES`; `MeshError::NonManifold` for Loop and butterfly on a mesh that is not an oriented manifold.
 pub fn subdivide(mesh: &TriMesh, scheme: Scheme, levels: usize) -> Result<TriMesh> {
     if mesh.face_count() == 0 {
         return Err(MeshError::Empty.into());

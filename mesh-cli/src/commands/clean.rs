@@ -5,17 +5,19 @@ use std::path::PathBuf;
 use mesh_core::clean::{CleanOptions, CleanReport};
 use serde::Serialize;
 
-use crate::output::{check_not_input, ensure_parent, print_json, CliResult};
+use crate::input::read_mesh;
+use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
 
 /// Arguments of `mesh clean`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Input mesh file.
-    input: PathBuf,
+    pub(crate) input: PathBuf,
     /// Output mesh file.
     output: PathBuf,
-    /// Weld vertices closer than this distance (default: identical positions only).
-    #[arg(long, default_value_t = 0.0)]
+    /// Weld vertices closer than this distance (default: identical positions
+    /// only); at most the bounding box diagonal.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     weld: f64,
     /// Make the result an oriented manifold: edges with three or more faces
     /// keep their best-continuing pair and detach the others, unorientable
@@ -28,6 +30,8 @@ pub struct Args {
     /// Allow the output to be the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -73,10 +77,17 @@ impl Summary {
     }
 }
 
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        vec![("weld_tolerance", crate::errors::flag("--weld", crate::errors::number(self.weld)))]
+    }
+}
+
 /// Runs `mesh clean`.
 pub fn run(args: &Args) -> CliResult<()> {
-    check_not_input(&args.output, Some(&args.input), args.force)?;
-    let data = mesh_io::read(&args.input)?;
+    check_output(&args.output, Some(&args.input), args.force)?;
+    let data = read_mesh(&args.input)?;
     let options = CleanOptions {
         weld_tolerance: Some(args.weld),
         manifold: args.manifold,
@@ -84,8 +95,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         ..CleanOptions::default()
     };
     let (mesh, report) = data.mesh.cleaned(&options)?;
-    ensure_parent(&args.output)?;
-    mesh_io::write(&args.output, &mesh, &mesh_io::WriteOptions::default())?;
+    write_mesh(&args.output, &mesh, &args.write.options(Default::default()))?;
     let summary = Summary::new(&report, &mesh);
     if args.json {
         print_json(&summary)

@@ -16,13 +16,13 @@ use mesh_io::MeshView;
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
 /// Arguments of `mesh curvature`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output PLY file: positions as double and per-vertex double properties
     /// gaussian mean (from the tensor) k1 k2 d1x d1y d1z d2x d2y d2z
     /// shape_index curvedness gaussian_discrete mean_discrete
@@ -218,7 +218,7 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
         other => return Err(format!("unknown --area `{other}`; known: mixed, barycentric").into()),
     };
     let options = PointwiseOptions { tensor, area, resolution: args.resolution };
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let start = Instant::now();
@@ -258,8 +258,8 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
         .with_scalar("valid", &valid)
         .with_scalar("flag", &flag)
         .with_scalar("flag_discrete", &flag_discrete);
-    ensure_parent(&args.out)?;
-    mesh_io::write(&args.out, view, &binary_ply())?;
+    check_folder(&args.out)?;
+    write_mesh(&args.out, view, &binary_ply())?;
 
     let trusted = |i: usize| c.flag[i].is_none();
     let trusted_discrete = |i: usize| c.flag_discrete[i].is_none();
@@ -321,6 +321,21 @@ fn print_text(s: &Summary) {
     println!("  flagged discrete   {} vertices{}", s.flagged_discrete.total, reasons(&s.flagged_discrete));
     println!("  time (ms)          {:.2}", s.timings_ms.curvature);
     println!("  wrote              {}", s.output);
+}
+
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        let mut given = Vec::new();
+        if let Some(r) = self.radius {
+            given.push(("radius", flag("--radius", number(r))));
+        }
+        if let Some(n) = self.rings {
+            given.push(("rings", flag("--rings", n)));
+        }
+        given
+    }
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use crate::input::InputArgs;
-use crate::output::{ensure_parent, CliResult};
+use crate::output::{check_output, write_mesh, CliResult, WriteArgs};
 
 /// Arguments of `mesh generate`.
 #[derive(Debug, clap::Args)]
@@ -16,14 +16,16 @@ pub struct Args {
     /// Resolution (icosphere: level; others: segments).
     #[arg(long)]
     res: Option<usize>,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 /// Runs `mesh generate`.
 pub fn run(args: &Args) -> CliResult<()> {
+    check_output(&args.output, None, false)?;
     let input = InputArgs { file: None, shape: Some(args.shape.clone()), res: args.res };
     let data = input.load()?;
-    ensure_parent(&args.output)?;
-    mesh_io::write(&args.output, &data.mesh, &mesh_io::WriteOptions::default())?;
+    write_mesh(&args.output, &data.mesh, &args.write.options(Default::default()))?;
     eprintln!(
         "wrote {} ({}: {} vertices, {} faces)",
         args.output.display(),

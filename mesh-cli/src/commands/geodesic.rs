@@ -21,13 +21,13 @@ use mesh_io::MeshView;
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
 /// Arguments of `mesh geodesic`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Source vertices, comma separated (e.g. 0,17,42).
     #[arg(long, value_name = "V[,V...]", value_delimiter = ',', required = true)]
     source: Vec<u32>,
@@ -212,9 +212,9 @@ fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> Cli
 
 /// Runs `mesh geodesic`.
 pub fn run(args: &Args) -> CliResult<()> {
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     if let Some(p) = &args.path_out {
-        check_not_input(p, args.input.path(), args.force)?;
+        check_output(p, args.input.path(), args.force)?;
     }
     let data = args.input.load()?;
     let mesh = &data.mesh;
@@ -226,7 +226,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     let field = distance(args, mesh, &sources)?;
     let d = &field.distance;
 
-    ensure_parent(&args.out)?;
+    check_folder(&args.out)?;
     let mut view = MeshView::new(mesh).with_scalar("distance", d);
     let flag = |which: HeatStatus| -> Vec<f64> {
         field.status.iter().flatten().map(|s| if *s == which { 1.0 } else { 0.0 }).collect()
@@ -235,7 +235,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     if field.status.is_some() {
         view = view.with_scalar("far_field", &far_field).with_scalar("unresolved", &unresolved);
     }
-    mesh_io::write(&args.out, view, &binary_ply())?;
+    write_mesh(&args.out, view, &binary_ply())?;
     let heat = field.status.as_ref().map(|_| HeatSummary {
         far_field: args.far_field.clone(),
         far_field_vertices: far_field.iter().filter(|x| **x > 0.0).count(),
@@ -249,7 +249,7 @@ pub fn run(args: &Args) -> CliResult<()> {
             let start = Instant::now();
             let path = trace_path(mesh, d, &sources, start_point, &TraceOptions::default())?;
             let t = ms(start);
-            ensure_parent(out)?;
+            check_folder(out)?;
             mesh_io::write_polylines(out, &[&path.positions])?;
             let summary = PathSummary {
                 from,
@@ -320,6 +320,18 @@ fn print_text(s: &Summary) {
         None => println!(),
     }
     println!("  wrote              {}", s.output);
+}
+
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        vec![
+            ("laplacian", flag("--laplacian", &self.laplacian)),
+            ("time_factor", flag("--time-factor", number(self.time_factor))),
+            ("far_field", flag("--far-field", &self.far_field)),
+        ]
+    }
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ use crate::output::{finite, print_json, CliResult};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -126,17 +126,47 @@ impl Info {
     }
 }
 
+/// What the reader changed, as `mesh info --json` prints it under `read`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReadSummary {
+    /// Faces dropped because they repeat a vertex or have fewer than three corners.
+    pub faces_dropped: usize,
+    /// Polygons split into triangles.
+    pub polygons_triangulated: usize,
+    /// Vertices merged into an identical one (STL).
+    pub vertices_welded: usize,
+    /// What the file held that was not read.
+    pub notes: Vec<String>,
+}
+
+impl From<&mesh_io::ReadReport> for ReadSummary {
+    fn from(r: &mesh_io::ReadReport) -> Self {
+        Self {
+            faces_dropped: r.faces_dropped,
+            polygons_triangulated: r.polygons_triangulated,
+            vertices_welded: r.vertices_welded,
+            notes: r.notes.clone(),
+        }
+    }
+}
+
+/// `mesh info --json`: the measures and what reading changed.
+#[derive(Serialize)]
+struct InfoJson<'a> {
+    #[serde(flatten)]
+    info: &'a Info,
+    read: ReadSummary,
+}
+
 /// Runs `mesh info`.
 pub fn run(args: &Args) -> CliResult<()> {
     let data = args.input.load()?;
     let info = Info::of(&data.mesh);
     if args.json {
-        print_json(&info)
+        print_json(&InfoJson { info: &info, read: ReadSummary::from(&data.report) })
     } else {
         info.print_text(&args.input.describe());
-        for note in &data.report.notes {
-            println!("  note: {note}");
-        }
+        println!("  read               {}", data.report);
         Ok(())
     }
 }

@@ -15,7 +15,7 @@ use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{shapes, tessellate, tessellate_adaptive, AdaptiveOptions, GridOptions, NurbsSurface, Tessellation};
 use serde::Serialize;
 
-use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
 /// The built-in exact shapes, with the size they are built at.
 pub const NURBS_SHAPES: &[&str] = &["sphere", "torus", "cylinder", "cone", "saddle"];
@@ -186,9 +186,9 @@ pub fn run(args: &Args) -> CliResult<()> {
             return Err(format!("--tolerance must be a positive number, got {t}").into());
         }
     }
-    check_not_input(&args.out, args.surface.as_deref(), args.force)?;
+    check_output(&args.out, args.surface.as_deref(), args.force)?;
     if let Some(json) = &args.surface_out {
-        check_not_input(json, args.surface.as_deref(), args.force)?;
+        check_output(json, args.surface.as_deref(), args.force)?;
     }
     let (surface, name) = load_surface(args)?;
     let start = Instant::now();
@@ -201,12 +201,12 @@ pub fn run(args: &Args) -> CliResult<()> {
     for (property, values) in [("gaussian", &t.gaussian), ("mean", &t.mean), ("k1", &t.k1), ("k2", &t.k2)] {
         view = view.with_scalar(property, values);
     }
-    ensure_parent(&args.out)?;
+    check_folder(&args.out)?;
     let mut write = binary_ply();
     write.ply.uv_names = mesh_io::PlyUvNames::Uv;
-    mesh_io::write(&args.out, view, &write)?;
+    write_mesh(&args.out, view, &write)?;
     if let Some(path) = &args.surface_out {
-        ensure_parent(path)?;
+        check_folder(path)?;
         let text = mesh_nurbs::json::to_json_string(&surface)?;
         mesh_io::write_atomic(path, |w| w.write_all(text.as_bytes()).map_err(|e| mesh_io::IoError::io(path, e)))?;
     }

@@ -19,13 +19,13 @@ use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSumma
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
 /// Arguments of `mesh param`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output OBJ file with one `vt` per vertex (per corner along seams).
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
@@ -327,7 +327,7 @@ pub(crate) fn summarize(cleaning: Cleaning, method: &Method, atlas: &Atlas, per_
 fn execute(args: &Args) -> CliResult<Summary> {
     let options = options(args)?;
     let mode: CleanMode = args.clean.parse()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let (vertices, faces) = (data.mesh.vertex_count(), data.mesh.face_count());
     let start = Instant::now();
@@ -339,9 +339,9 @@ fn execute(args: &Args) -> CliResult<Summary> {
         Some(uv) => MeshView::new(&mesh).with_uvs(uv),
         None => MeshView::new(&mesh).with_corner_uvs(&a.corner_uvs),
     };
-    ensure_parent(&args.out)?;
+    check_folder(&args.out)?;
     let write = mesh_io::WriteOptions { format: Some(mesh_io::Format::Obj), ..Default::default() };
-    mesh_io::write(&args.out, view, &write)?;
+    write_mesh(&args.out, view, &write)?;
     Ok(Summary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -436,6 +436,31 @@ fn print_text(s: &Summary) {
     }
     println!("  time (ms)          {:.2}", s.time_ms);
     println!("  wrote              {}", s.output);
+}
+
+impl Args {
+    /// The library options set from flags, for [`crate::errors::translate`].
+    /// The boundary counts as given only when it is not the default circle
+    /// (which no mesh makes fail by the user's choice).
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        let mut given = vec![
+            ("method", flag("--method", &self.method)),
+            ("margin", flag("--margin", number(self.margin))),
+            ("iterations", flag("--iterations", self.iterations)),
+            ("lambda/mu", format!("--lambda {} --mu {}", number(self.lambda), number(self.mu))),
+        ];
+        if self.boundary != "circle" {
+            given.push(("boundary", flag("--boundary", &self.boundary)));
+        }
+        if let Some(n) = self.max_chart_faces {
+            given.push(("max_chart_faces", flag("--max-chart-faces", n)));
+        }
+        if let Some(d) = self.max_area_distortion {
+            given.push(("max_area_distortion", flag("--max-area-distortion", number(d))));
+        }
+        given
+    }
 }
 
 #[cfg(test)]

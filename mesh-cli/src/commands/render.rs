@@ -4,14 +4,14 @@
 use std::path::PathBuf;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, CliResult};
+use crate::output::{check_folder, check_output, CliResult};
 use crate::render::{render_png, RenderOptions};
 
 /// Arguments of `mesh render`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output PNG file.
     #[arg(long)]
     out: PathBuf,
@@ -54,7 +54,7 @@ pub fn axis(name: &str, input: &InputArgs) -> CliResult<mesh_core::glam::DVec3> 
 
 /// Runs `mesh render`.
 pub fn run(args: &Args) -> CliResult<()> {
-    check_not_input(&args.out, args.input.path(), false)?;
+    check_output(&args.out, args.input.path(), false)?;
     let data = args.input.load()?;
     let scalar = match &args.field {
         Some(name) => Some(data.scalar(name).ok_or_else(|| {
@@ -74,7 +74,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         up: axis(&args.up, &args.input)?,
         title: args.field.clone(),
     };
-    ensure_parent(&args.out)?;
+    check_folder(&args.out)?;
     render_png(&data.mesh, scalar, &args.out, &options)?;
     eprintln!("wrote {}", args.out.display());
     Ok(())

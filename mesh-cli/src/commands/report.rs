@@ -19,14 +19,14 @@ use serde_json::{json, Map, Value};
 
 use super::info::Info;
 use crate::input::InputArgs;
-use crate::output::{check_not_input, finite, write_json, CliResult};
+use crate::output::{check_output, finite, write_json, write_mesh, CliResult};
 use crate::render::{render_png, RenderOptions};
 
 /// Arguments of `mesh report`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    input: InputArgs,
+    pub(crate) input: InputArgs,
     /// Output folder (created if needed).
     #[arg(long, default_value = "out")]
     out: PathBuf,
@@ -82,7 +82,7 @@ impl Report<'_> {
     /// The path of an output file, recorded in the report.
     fn file(&mut self, name: &str) -> CliResult<PathBuf> {
         let path = self.dir.join(name);
-        check_not_input(&path, self.input, false)?;
+        check_output(&path, self.input, false)?;
         self.files.push(name.to_owned());
         Ok(path)
     }
@@ -152,7 +152,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     for (name, values) in &report.fields {
         view = view.with_scalar(name, values);
     }
-    mesh_io::write(&ply, view, &mesh_io::WriteOptions::default())?;
+    write_mesh(&ply, view, &mesh_io::WriteOptions::default())?;
     let shaded = report.file("mesh.png")?;
     render_png(mesh, None, &shaded, &report.picture)?;
 
@@ -456,7 +456,7 @@ fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
     let uv_obj = report.file("uv.obj")?;
     let view = MeshView::new(&cleaned).with_corner_uvs(&a.corner_uvs);
-    mesh_io::write(&uv_obj, view, &mesh_io::WriteOptions::default())?;
+    write_mesh(&uv_obj, view, &mesh_io::WriteOptions::default())?;
     let mut summary = super::param::Summary {
         output: "uv.obj".to_owned(),
         vertices: mesh.vertex_count(),

@@ -26,7 +26,7 @@ use mesh_spectral::{
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{binary_ply, check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{binary_ply, check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
 
 /// Arguments of `mesh spectral`.
 #[derive(Debug, clap::Args)]
@@ -129,6 +129,8 @@ struct FilterArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -149,6 +151,8 @@ struct CompressArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -325,8 +329,7 @@ fn write_fields(path: &std::path::Path, mesh: &TriMesh, prefix: &str, fields: &[
     for (name, values) in names.iter().zip(fields) {
         view = view.with_scalar(name, values);
     }
-    ensure_parent(path)?;
-    mesh_io::write(path, view, &binary_ply())?;
+    write_mesh(path, view, &binary_ply())?;
     Ok(())
 }
 
@@ -342,7 +345,7 @@ pub fn run(args: &Args) -> CliResult<()> {
 
 fn run_eigen(args: &EigenArgs) -> CliResult<()> {
     if let Some(out) = &args.out {
-        check_not_input(out, args.input.path(), args.force)?;
+        check_output(out, args.input.path(), args.force)?;
     }
     let data = args.input.load()?;
     let mesh = &data.mesh;
@@ -446,7 +449,7 @@ fn transfer(args: &FilterArgs) -> CliResult<Transfer> {
 }
 
 fn run_filter(args: &FilterArgs) -> CliResult<()> {
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let transfer = transfer(args)?;
@@ -454,8 +457,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
     let mh = ManifoldHarmonics::new(mesh, args.keep, &args.operator.options()?)?;
     let filtered = filter_mesh(mesh, &mh, &transfer)?;
     let time_ms = ms(start);
-    ensure_parent(&args.out)?;
-    mesh_io::write(&args.out, &filtered, &Default::default())?;
+    write_mesh(&args.out, &filtered, &args.write.options(Default::default()))?;
     let diagonal = mesh_core::geometry::bounding_box(mesh).map_or(1.0, |b| b.diagonal());
     let moved = mesh.positions().iter().zip(filtered.positions()).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
     let summary = FilterSummary {
@@ -475,7 +477,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
 
 fn run_compress(args: &CompressArgs) -> CliResult<()> {
     if let Some(out) = &args.out {
-        check_not_input(out, args.input.path(), args.force)?;
+        check_output(out, args.input.path(), args.force)?;
     }
     let data = args.input.load()?;
     let mesh = &data.mesh;
@@ -488,8 +490,7 @@ fn run_compress(args: &CompressArgs) -> CliResult<()> {
     let (restored, error) = compress(mesh, &mh, args.keep)?;
     let time_ms = ms(start);
     if let Some(out) = &args.out {
-        ensure_parent(out)?;
-        mesh_io::write(out, &restored, &Default::default())?;
+        write_mesh(out, &restored, &args.write.options(Default::default()))?;
     }
     let summary = CompressSummary {
         input: args.input.describe(),
@@ -515,7 +516,7 @@ fn run_compress(args: &CompressArgs) -> CliResult<()> {
 }
 
 fn run_hks(args: &HksArgs) -> CliResult<()> {
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let start = Instant::now();
@@ -542,6 +543,47 @@ fn run_hks(args: &HksArgs) -> CliResult<()> {
     }
     eprintln!("wrote {} ({} times, {} pairs, {:.1} ms)", summary.output, summary.times.len(), k, time_ms);
     Ok(())
+}
+
+impl Args {
+    /// The input file, if any.
+    pub fn input_file(&self) -> Option<&std::path::Path> {
+        match &self.command {
+            None => self.eigen.input.path(),
+            Some(SpectralCommand::Filter(a)) => a.input.path(),
+            Some(SpectralCommand::Compress(a)) => a.input.path(),
+            Some(SpectralCommand::Hks(a)) => a.input.path(),
+        }
+    }
+
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::{flag, number};
+        let operator = |o: &OperatorArgs| ("tolerance", flag("--tolerance", number(o.tolerance)));
+        match &self.command {
+            None => vec![
+                ("k", flag("--k", self.eigen.k)),
+                ("component", flag("--component", &self.eigen.component)),
+                operator(&self.eigen.operator),
+            ],
+            Some(SpectralCommand::Filter(a)) => {
+                let mut given = vec![("k", flag("--keep", a.keep)), operator(&a.operator)];
+                if let Some(g) = a.gain {
+                    given.push(("gain", flag("--gain", number(g))));
+                }
+                given
+            }
+            Some(SpectralCommand::Compress(a)) => {
+                vec![("k", flag("--keep", a.keep)), ("keep", flag("--keep", a.keep)), operator(&a.operator)]
+            }
+            Some(SpectralCommand::Hks(a)) => vec![
+                ("k", flag("--k", a.k)),
+                ("count", flag("--times", a.times)),
+                ("times", flag("--times", a.times)),
+                operator(&a.operator),
+            ],
+        }
+    }
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ use mesh_wavelet::{decay_rate, subdivide, CompressOptions, Multiresolution, Opti
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_not_input, ensure_parent, finite, print_json, CliResult};
+use crate::output::{check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
 
 /// Arguments of `mesh subdivide`.
 #[derive(Debug, clap::Args)]
@@ -37,6 +37,8 @@ pub struct SubdivideArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 /// What `mesh subdivide --json` prints.
@@ -54,6 +56,9 @@ pub struct SubdivideSummary {
     pub input_vertices: usize,
     /// Input face count.
     pub input_faces: usize,
+    /// Input vertices no face used, dropped before subdividing (the output
+    /// then has subdivision connectivity, which `mesh wavelet` needs).
+    pub unreferenced_vertices_dropped: usize,
     /// Output vertex count.
     pub vertices: usize,
     /// Output face count.
@@ -65,12 +70,13 @@ pub struct SubdivideSummary {
 /// Runs `mesh subdivide`.
 pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
     let scheme: Scheme = args.scheme.parse()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
+    let (mesh, dropped) = drop_unreferenced(&data.mesh)?;
     let start = Instant::now();
-    let fine = subdivide(&data.mesh, scheme, args.levels)?;
+    let fine = subdivide(&mesh, scheme, args.levels)?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
-    write_mesh(&args.out, &fine)?;
+    write_mesh(&args.out, &fine, &args.write.options(Default::default()))?;
     let summary = SubdivideSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -78,6 +84,7 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
         levels: args.levels,
         input_vertices: data.mesh.vertex_count(),
         input_faces: data.mesh.face_count(),
+        unreferenced_vertices_dropped: dropped,
         vertices: fine.vertex_count(),
         faces: fine.face_count(),
         time_ms,
@@ -85,11 +92,33 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
     if args.json {
         return print_json(&summary);
     }
+    if dropped > 0 {
+        eprintln!("dropped {dropped} unreferenced vertices of the input (no face uses them)");
+    }
     eprintln!(
         "wrote {} ({} {} level(s): {} vertices, {} faces, {:.1} ms)",
         summary.output, summary.scheme, summary.levels, summary.vertices, summary.faces, time_ms
     );
     Ok(())
+}
+
+/// The mesh without the vertices no face uses (the others renumbered in
+/// order), and how many were dropped. Cost O(V + F).
+fn drop_unreferenced(mesh: &TriMesh) -> CliResult<(std::borrow::Cow<'_, TriMesh>, usize)> {
+    if mesh_core::clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).is_empty() {
+        return Ok((std::borrow::Cow::Borrowed(mesh), 0));
+    }
+    let only_unreferenced = mesh_core::clean::CleanOptions {
+        weld_tolerance: None,
+        drop_degenerate: false,
+        drop_duplicates: false,
+        drop_unreferenced: true,
+        manifold: false,
+        orient: false,
+        ..Default::default()
+    };
+    let (compact, report) = mesh.cleaned(&only_unreferenced)?;
+    Ok((std::borrow::Cow::Owned(compact), report.unreferenced_vertices))
 }
 
 /// Arguments of `mesh wavelet`.
@@ -166,6 +195,8 @@ struct CompressArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -186,6 +217,8 @@ struct LodArgs {
     /// Allow writing over the input file.
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    write: WriteArgs,
 }
 
 /// Coefficient magnitudes of one level.
@@ -342,12 +375,12 @@ fn analyze(args: &AnalyzeArgs) -> CliResult<AnalyzeSummary> {
 
 fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
     let options = args.bank.options()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
     let c = mr.compress(&CompressOptions { keep: args.keep })?;
     let out = c.multiresolution.synthesize()?;
-    write_mesh(&args.out, &out)?;
+    write_mesh(&args.out, &out, &args.write.options(Default::default()))?;
     Ok(CompressSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -362,11 +395,11 @@ fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
 
 fn lod(args: &LodArgs) -> CliResult<LodSummary> {
     let options = args.bank.options()?;
-    check_not_input(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
     let mesh = mr.level(args.level)?;
-    write_mesh(&args.out, &mesh)?;
+    write_mesh(&args.out, &mesh, &args.write.options(Default::default()))?;
     Ok(LodSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -375,12 +408,6 @@ fn lod(args: &LodArgs) -> CliResult<LodSummary> {
         vertices: mesh.vertex_count(),
         faces: mesh.face_count(),
     })
-}
-
-fn write_mesh(path: &std::path::Path, mesh: &TriMesh) -> CliResult<()> {
-    ensure_parent(path)?;
-    mesh_io::write(path, mesh, &mesh_io::WriteOptions::default())?;
-    Ok(())
 }
 
 fn max_distance(a: &TriMesh, b: &TriMesh) -> f64 {
@@ -409,6 +436,46 @@ fn print_analysis(s: &AnalyzeSummary) {
         println!("  reconstruction     {e:.2e} of the diagonal");
     }
     println!("  time               {:.1} ms", s.time_ms);
+}
+
+impl SubdivideArgs {
+    /// The input file, if any.
+    pub fn input_file(&self) -> Option<&std::path::Path> {
+        self.input.path()
+    }
+
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::flag;
+        vec![("levels", flag("--levels", self.levels)), ("scheme", flag("--scheme", &self.scheme))]
+    }
+}
+
+impl Args {
+    /// The input file, if any.
+    pub fn input_file(&self) -> Option<&std::path::Path> {
+        match &self.command {
+            WaveletCommand::Analyze(a) => a.input.path(),
+            WaveletCommand::Compress(a) => a.input.path(),
+            WaveletCommand::Lod(a) => a.input.path(),
+        }
+    }
+
+    /// The library options set from flags, for [`crate::errors::translate`].
+    pub fn given(&self) -> Vec<(&'static str, String)> {
+        use crate::errors::flag;
+        let (bank, mut given) = match &self.command {
+            WaveletCommand::Analyze(a) => (&a.bank, Vec::new()),
+            WaveletCommand::Compress(a) => (&a.bank, vec![("keep", flag("--keep", a.keep))]),
+            WaveletCommand::Lod(a) => (&a.bank, vec![("level", flag("--level", a.level))]),
+        };
+        given.push(("scheme", flag("--scheme", &bank.scheme)));
+        given.push(("wavelet", flag("--wavelet", &bank.wavelet)));
+        if let Some(n) = bank.max_levels {
+            given.push(("max_levels", flag("--max-levels", n)));
+        }
+        given
+    }
 }
 
 #[cfg(test)]

@@ -127,6 +127,12 @@ impl FastMarching {
     /// Builds the stencils of every triangle corner (see [`FastMarching`]).
     /// Works on any triangle soup: unfolding stops at boundary and
     /// non-manifold edges, zero-area triangles give edge updates only.
+    ///
+    /// # Errors
+    /// `GeodesicError::FieldLength` when `options.weights` does not have one value per vertex;
+    /// `GeodesicError::InvalidOption` (`weights`) for a weight that is not finite and non-negative,
+    /// (`max_distance`) for a NaN or negative `max_distance`; `GeodesicError::Mesh` for a mesh the solver
+    /// cannot prepare (for example `MeshError::NonManifold`).
     pub fn new(mesh: &TriMesh, options: &FmmOptions) -> Result<Self> {
         if let Some(w) = &options.weights {
             validate_length("weights", mesh.vertex_count(), w.len())?;
@@ -167,6 +173,9 @@ impl FastMarching {
     /// (U = 0 there) to every vertex; `+infinity` on vertices no source
     /// reaches (other components, isolated vertices, beyond
     /// [`FmmOptions::max_distance`]). Cost O(V log V).
+    ///
+    /// # Errors
+    /// As [`FastMarching::distance_and_labels`].
     pub fn distance(&self, sources: &[VertexId]) -> Result<Vec<f64>> {
         Ok(self.distance_and_labels(sources)?.0)
     }
@@ -174,6 +183,10 @@ impl FastMarching {
     /// [`FastMarching::distance`] together with the position in `sources` of
     /// the source whose front reached each vertex (a geodesic Voronoi
     /// labelling; `u32::MAX` where unreached). Cost O(V log V).
+    ///
+    /// # Errors
+    /// `GeodesicError::NoSources` for an empty `sources`; `GeodesicError::SourceOutOfRange` for a source that
+    /// is not a vertex.
     pub fn distance_and_labels(&self, sources: &[VertexId]) -> Result<(Vec<f64>, Vec<u32>)> {
         let n = self.vertex_count();
         if sources.is_empty() {
@@ -241,6 +254,9 @@ impl FastMarching {
 /// }
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// The errors of [`FastMarching::new`] and [`FastMarching::distance`].
 pub fn fmm_distance(mesh: &TriMesh, sources: &[VertexId], options: &FmmOptions) -> Result<Vec<f64>> {
     validate_sources(mesh, sources)?;
     FastMarching::new(mesh, options)?.distance(sources)

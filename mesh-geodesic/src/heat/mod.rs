@@ -177,6 +177,13 @@ impl HeatGeodesics {
     /// [`HeatGeodesics`]). Errors: an empty mesh, a non-positive time factor,
     /// a cotangent Laplacian disconnected by zero-area triangles, or a
     /// factorization failure.
+    ///
+    /// # Errors
+    /// `GeodesicError::InvalidOption` (`time_factor`) for a time factor that is not finite and positive;
+    /// `GeodesicError::Mesh` with `MeshError::Empty` for a mesh without faces, or the errors of the intrinsic
+    /// Delaunay triangulation and of the Cholesky factorization (`MeshError::Solver`);
+    /// `GeodesicError::Degenerate` when zero-area triangles disconnect the cotangent Laplacian (choose
+    /// `HeatLaplacian::IntrinsicDelaunay`) or every edge has zero length.
     pub fn new(mesh: &TriMesh, options: &HeatOptions) -> Result<Self> {
         if !(options.time_factor.is_finite() && options.time_factor > 0.0) {
             return Err(GeodesicError::InvalidOption {
@@ -296,6 +303,9 @@ impl HeatGeodesics {
     /// at 0 from below. The same as [`HeatGeodesics::solve`] without the
     /// per-vertex status. Cost: two (three with a boundary) pairs of sparse
     /// triangular solves and O(F), plus the far field where there is one.
+    ///
+    /// # Errors
+    /// As [`HeatGeodesics::solve`].
     pub fn distance(&self, sources: &[VertexId]) -> Result<Vec<f64>> {
         Ok(self.solve(sources)?.distance)
     }
@@ -304,6 +314,11 @@ impl HeatGeodesics {
     /// vertex: computed by the heat method, continued by the far field
     /// beyond the heat flow's resolved range, left unresolved (only with
     /// [`HeatFarField::None`]), or unreached.
+    ///
+    /// # Errors
+    /// `GeodesicError::NoSources` for an empty `sources`; `GeodesicError::SourceOutOfRange` for a source that
+    /// is not a vertex; `GeodesicError::Mesh` (`MeshError::Solver`) when a solve fails; the errors of Fast
+    /// Marching when the far field is completed with it.
     pub fn solve(&self, sources: &[VertexId]) -> Result<HeatDistance> {
         let n = self.vertex_count;
         if sources.is_empty() {
@@ -406,6 +421,9 @@ impl HeatGeodesics {
 /// }
 /// # Ok::<(), mesh_geodesic::GeodesicError>(())
 /// ```
+///
+/// # Errors
+/// The errors of [`HeatGeodesics::new`] and [`HeatGeodesics::solve`].
 pub fn heat_distance(mesh: &TriMesh, sources: &[VertexId], options: &HeatOptions) -> Result<Vec<f64>> {
     validate_sources(mesh, sources)?;
     HeatGeodesics::new(mesh, options)?.distance(sources)

@@ -50,6 +50,10 @@ fn solver_error(what: &str, e: impl std::fmt::Debug) -> MeshError {
 impl BlockCholesky {
     /// Analyses (AMD ordering) and factors the symmetric positive definite
     /// `a` (its lower triangle is read). Fails if `a` is not positive definite.
+    ///
+    /// # Errors
+    /// `SpectralError::Mesh` (`MeshError::Solver`) when the symbolic analysis fails, memory runs out, or the
+    /// matrix is not positive definite.
     pub fn new(a: &SparseColMat<usize, f64>) -> Result<Self> {
         let n = a.nrows();
         let params = CholeskySymbolicParams {

@@ -357,6 +357,13 @@ impl Eigenpairs {
 /// carrying mass ([`SpectralError::TooManyPairs`]), a shift that is not
 /// below the spectrum, a pair that misses the tolerance after every retry
 /// ([`SpectralError::NotConverged`], with the residuals).
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`k` for 0, `tolerance`, `shift`, `block_size`, `component`) for invalid
+/// options; `SpectralError::InvalidMatrix` for matrices that are not square, symmetric or of matching sizes,
+/// or masses that are not positive and finite; `SpectralError::TooManyPairs` when `k` exceeds the vertices
+/// carrying mass; `SpectralError::NotConverged` with the residuals when the tolerance is not reached;
+/// `SpectralError::Mesh` (`MeshError::Solver`) or `SpectralError::Dense` when a factorization fails.
 pub fn eigenpairs(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &Options) -> Result<Eigenpairs> {
     let start = Instant::now();
     options.validate()?;

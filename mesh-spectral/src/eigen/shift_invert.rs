@@ -40,6 +40,9 @@ pub(crate) struct ShiftInvert {
 impl ShiftInvert {
     /// Factors `L - shift M`. Fails if it is not positive definite (the
     /// shift is not below the spectrum).
+    ///
+    /// # Errors
+    /// `SpectralError::Mesh` (`MeshError::Solver`) when the shifted matrix cannot be factorized.
     pub fn new(c: &Component, shift: f64) -> Result<Self> {
         let k = &c.laplacian - &mesh_core::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
         let chol = BlockCholesky::new(&mesh_core::solver::to_faer(&k)?)?;
@@ -81,6 +84,9 @@ impl ShiftInvert {
 
     /// `w = B q` for a block of columns: block solves of [`LANES`] columns
     /// (in parallel across lane groups with the `rayon` feature).
+    ///
+    /// # Errors
+    /// None at present: the triangular solves cannot fail once the factor exists.
     pub fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
         let mut groups = self.take_scratch(q.ncols());
         self.gather(q, |_| 1.0, &mut groups);
@@ -162,6 +168,9 @@ impl ShiftInvert {
     /// `u = B y / theta` and values `theta`: `x = K^-1 M^1/2 y / theta`,
     /// which is `M^-1/2 u` on massive vertices and the harmonic extension on
     /// massless ones (one extra block solve, only when such vertices exist).
+    ///
+    /// # Errors
+    /// `SpectralError::Dense` when a Ritz value is zero or not finite (cannot be inverted).
     pub fn vectors(&self, y: MatRef<'_, f64>, u: MatRef<'_, f64>, theta: &[f64]) -> Result<Mat<f64>> {
         let n = self.coords.len();
         let mut x = Mat::zeros(n, u.ncols());
