@@ -33,6 +33,7 @@ const GROUPS: &[Group] = &[
     ("spectral", spectral::run),
     ("units", units::run),
     ("wavelet", wavelet::run),
+    ("fuzz", crate::fuzz::validate_group),
 ];
 
 /// Arguments of `cargo xtask validate`.
