@@ -157,7 +157,14 @@ pub fn campaign(format: Format, seed: u64, iterations: u64, progress: bool) -> R
     let start = Instant::now();
     panics::quietly(|| {
         for iteration in 0..iterations {
-            let (bytes, _) = input(format, &all, seed, iteration);
+            // A panic here is the fuzzer's own bug: stop with its message.
+            let (bytes, _) = match panics::catch(|| input(format, &all, seed, iteration)) {
+                Ok(made) => made,
+                Err(panic) => {
+                    eprintln!("fuzz: building input {iteration} panicked: {panic}");
+                    std::process::exit(4);
+                }
+            };
             alloc::set_context(&replay_command(format, seed, iteration));
             if let Ok(mut c) = current.lock() {
                 c.bytes.clear();

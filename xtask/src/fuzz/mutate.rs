@@ -191,7 +191,7 @@ fn number_replacement(rng: &mut Rng, old: &[u8]) -> String {
     match rng.below(4) {
         0 | 1 => (*rng.pick(INTEGERS)).to_owned(),
         2 => match text.parse::<i64>() {
-            Ok(v) => (v + if rng.one_in(2) { 1 } else { -1 }).to_string(),
+            Ok(v) => v.saturating_add(if rng.one_in(2) { 1 } else { -1 }).to_string(),
             Err(_) => (*rng.pick(FLOATS)).to_owned(),
         },
         _ => (*rng.pick(FLOATS)).to_owned(),

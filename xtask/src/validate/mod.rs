@@ -7,6 +7,7 @@
 mod core;
 mod curvature;
 mod geodesic;
+mod matrix;
 mod nurbs;
 mod param;
 mod scale;
@@ -34,6 +35,7 @@ const GROUPS: &[Group] = &[
     ("units", units::run),
     ("wavelet", wavelet::run),
     ("fuzz", crate::fuzz::validate_group),
+    ("matrix", matrix::run),
 ];
 
 /// Arguments of `cargo xtask validate`.
