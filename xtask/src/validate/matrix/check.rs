@@ -21,6 +21,9 @@ pub struct Field {
     pub scaling: Scaling,
     /// `+infinity` is a legitimate value (unreachable vertices).
     pub infinite_ok: bool,
+    /// Stored as `f32` on the way (a file format's precision): its range
+    /// decides what is representable, its precision the comparison.
+    pub single: bool,
     /// The values.
     pub values: Vec<f64>,
 }
@@ -37,19 +40,25 @@ pub struct Out {
 impl Out {
     /// Adds a field that scales with `s^power`.
     pub fn field(mut self, name: &'static str, power: i32, values: Vec<f64>) -> Self {
-        self.fields.push(Field { name, scaling: Scaling::Power(power), infinite_ok: false, values });
+        self.fields.push(Field { name, scaling: Scaling::Power(power), infinite_ok: false, single: false, values });
+        self
+    }
+
+    /// Adds values that went through `f32` and scale with `s^power`.
+    pub fn single(mut self, name: &'static str, power: i32, values: Vec<f64>) -> Self {
+        self.fields.push(Field { name, scaling: Scaling::Power(power), infinite_ok: false, single: true, values });
         self
     }
 
     /// Adds a distance field: power 1, `+infinity` allowed.
     pub fn distances(mut self, name: &'static str, values: Vec<f64>) -> Self {
-        self.fields.push(Field { name, scaling: Scaling::Power(1), infinite_ok: true, values });
+        self.fields.push(Field { name, scaling: Scaling::Power(1), infinite_ok: true, single: false, values });
         self
     }
 
     /// Adds counts, which no scaling may change.
     pub fn counts(mut self, name: &'static str, values: Vec<f64>) -> Self {
-        self.fields.push(Field { name, scaling: Scaling::Exact, infinite_ok: false, values });
+        self.fields.push(Field { name, scaling: Scaling::Exact, infinite_ok: false, single: false, values });
         self
     }
 
@@ -89,15 +98,19 @@ fn magnitude(values: &[f64]) -> f64 {
     values.iter().filter(|x| x.is_finite()).fold(0.0, |m, x| m.max(x.abs()))
 }
 
-/// `true` when every field of `reference`, rescaled by `scale`, has its
-/// magnitude inside the normal range of f64 (so a correct answer exists).
+/// `true` when every field of `reference`, rescaled by `scale`, has all its
+/// non-zero magnitudes inside the normal range of f64 (of f32 for fields
+/// stored as `f32`), so that a correct answer exists.
 pub fn representable(reference: &Out, scale: f64) -> bool {
     reference.fields.iter().all(|f| match f.scaling {
         Scaling::Exact => true,
         Scaling::Power(p) => {
-            let m = magnitude(&f.values);
-            let e = m.log10() + p as f64 * scale.log10();
-            m == 0.0 || (-307.0..308.0).contains(&e)
+            let (low, high) = if f.single { (-37.0, 38.0) } else { (-307.0, 308.0) };
+            let shift = p as f64 * scale.log10();
+            f.values
+                .iter()
+                .filter(|x| x.is_finite() && **x != 0.0)
+                .all(|x| (low..high).contains(&(x.abs().log10() + shift)))
         }
     })
 }
@@ -134,8 +147,9 @@ pub fn same_up_to_scale(result: &Out, reference: &Out, scale: f64) -> Result<(),
             }
             continue;
         }
+        let tolerance = if r.single { 2.0 * f64::from(f32::EPSILON) } else { SCALE_TOLERANCE };
         let log_error = (mr.ln() - mu.ln() - p as f64 * scale.ln()).abs();
-        if log_error > SCALE_TOLERANCE {
+        if log_error > tolerance {
             let expected = 10f64.powf(mu.log10() + p as f64 * scale.log10());
             return Err(format!(
                 "{}: largest |value| {mr:e}, expected {expected:e} (unscaled {mu:e} x scale^{p})",
@@ -146,7 +160,7 @@ pub fn same_up_to_scale(result: &Out, reference: &Out, scale: f64) -> Result<(),
             .filter(|&i| r.values[i].is_finite())
             .map(|i| (i, (r.values[i] / mr - u.values[i] / mu).abs()))
             .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
-        if worst.1 > SCALE_TOLERANCE {
+        if worst.1 > tolerance {
             let i = worst.0;
             return Err(format!(
                 "{}[{i}] = {:e}, unscaled {:e}: relative difference {:.1e}",

@@ -227,7 +227,8 @@ fn round_trip(m: &TriMesh, format: Format, options: WriteOptions) -> Result<Out,
             .find(|&f| !m.triangle(f).iter().zip(b.triangle(f)).all(|(p, q)| same_point(*p, q)))
             .map(|f| format!("face {f:?} comes back as {:?}, was {:?}", b.triangle(f), m.triangle(f)))
     };
-    Ok(Out::default()
-        .counts("faces", vec![b.face_count() as f64])
-        .require(problem.is_none(), || problem.unwrap_or_default()))
+    let corners: Vec<f64> = b.face_ids().flat_map(|f| b.triangle(f)).flat_map(|p| p.to_array()).collect();
+    let out = Out::default().counts("faces", vec![b.face_count() as f64]);
+    let out = if single { out.single("corners", 1, corners) } else { out.field("corners", 1, corners) };
+    Ok(out.require(problem.is_none(), || problem.unwrap_or_default()))
 }
