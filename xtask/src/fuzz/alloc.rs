@@ -34,6 +34,19 @@ impl Counting {
         PEAK.fetch_max(now, Ordering::Relaxed);
         true
     }
+
+    /// Counts `bytes`, then allocates with `f` (null, uncounted, when
+    /// refused or when the system fails).
+    fn counted(&self, bytes: usize, f: impl FnOnce() -> *mut u8) -> *mut u8 {
+        if !self.grow(bytes) {
+            return std::ptr::null_mut();
+        }
+        let p = f();
+        if p.is_null() {
+            CURRENT.fetch_sub(bytes, Ordering::Relaxed);
+        }
+        p
+    }
 }
 
 /// Prints the context without allocating (a fixed buffer, stderr unbuffered).
@@ -69,25 +82,11 @@ fn write_number(out: &mut impl Write, mut n: usize) -> std::io::Result<()> {
 // updated around it, and a refused request returns null as the trait allows.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if !self.grow(layout.size()) {
-            return std::ptr::null_mut();
-        }
-        let p = System.alloc(layout);
-        if p.is_null() {
-            CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-        }
-        p
+        self.counted(layout.size(), || System.alloc(layout))
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        if !self.grow(layout.size()) {
-            return std::ptr::null_mut();
-        }
-        let p = System.alloc_zeroed(layout);
-        if p.is_null() {
-            CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
-        }
-        p
+        self.counted(layout.size(), || System.alloc_zeroed(layout))
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
@@ -133,5 +132,22 @@ pub fn set_context(text: &str) {
         let n = text.len().min(buffer.len() - 1);
         buffer[..n].copy_from_slice(&text.as_bytes()[..n]);
         buffer[n] = 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn peak_sees_a_large_allocation() {
+        reset_peak();
+        let base = current();
+        let big = vec![1u8; 64 << 20];
+        let seen = peak().saturating_sub(base);
+        drop(big);
+        // Other test threads allocate too: at least ours is counted.
+        assert!(seen >= 64 << 20, "peak grew by {seen} bytes");
+        assert!(current() < base + (64 << 20));
     }
 }

@@ -37,3 +37,16 @@ pub fn catch<R>(f: impl FnOnce() -> R) -> Result<R, String> {
         LAST.lock().ok().and_then(|mut l| l.take()).unwrap_or_else(|| "panic (message not recorded)".to_owned())
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_becomes_its_message() {
+        let caught = quietly(|| catch(|| -> u32 { panic!("index {} out of range", 7) }));
+        let message = caught.unwrap_err();
+        assert!(message.starts_with("index 7 out of range at "), "{message}");
+        assert_eq!(quietly(|| catch(|| 3)), Ok(3));
+    }
+}
