@@ -118,6 +118,10 @@ fn write_input(format: Format, seed: u64, iteration: u64, bytes: &[u8]) -> Optio
 fn watchdog(current: Arc<Mutex<Current>>) {
     std::thread::spawn(move || loop {
         std::thread::sleep(Duration::from_millis(500));
+        // The campaign has ended (it dropped its handle).
+        if Arc::strong_count(&current) == 1 {
+            return;
+        }
         let Ok(c) = current.lock() else { return };
         if let (Some(started), Some(format)) = (c.started, c.format) {
             if started.elapsed().as_secs_f64() > HANG_SECONDS {
