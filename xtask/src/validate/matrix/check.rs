@@ -98,21 +98,32 @@ fn magnitude(values: &[f64]) -> f64 {
     values.iter().filter(|x| x.is_finite()).fold(0.0, |m, x| m.max(x.abs()))
 }
 
-/// `true` when every field of `reference`, rescaled by `scale`, has all its
-/// non-zero magnitudes inside the normal range of f64 (of f32 for fields
-/// stored as `f32`), so that a correct answer exists.
+/// `true` when every field of `reference`, rescaled by `scale`, has a
+/// representable answer: its largest magnitude below the largest finite
+/// number, and large enough that subnormal rounding of its small entries
+/// stays within the comparison's tolerance (f64: at least 1e-314; for
+/// fields stored as `f32`, the normal range of f32).
 pub fn representable(reference: &Out, scale: f64) -> bool {
     reference.fields.iter().all(|f| match f.scaling {
         Scaling::Exact => true,
         Scaling::Power(p) => {
-            let (low, high) = if f.single { (-37.0, 38.0) } else { (-307.0, 308.0) };
-            let shift = p as f64 * scale.log10();
-            f.values
-                .iter()
-                .filter(|x| x.is_finite() && **x != 0.0)
-                .all(|x| (low..high).contains(&(x.abs().log10() + shift)))
+            let (low, high) = if f.single { (-37.9, 38.5) } else { (-314.0, 308.2) };
+            let m = magnitude(&f.values);
+            m == 0.0 || (low..high).contains(&(m.log10() + p as f64 * scale.log10()))
         }
     })
+}
+
+/// Distance between two points without overflow or underflow of the
+/// squares (the difference is scaled by its largest component first).
+pub fn distance(a: mesh_core::glam::DVec3, b: mesh_core::glam::DVec3) -> f64 {
+    let d = a - b;
+    let k = d.abs().max_element();
+    if k == 0.0 || !k.is_finite() {
+        k
+    } else {
+        (d / k).length() * k
+    }
 }
 
 /// Compares a scaled mesh's result with the unscaled one: each field's

@@ -210,8 +210,9 @@ fn round_trip(m: &TriMesh, format: Format, options: WriteOptions) -> Result<Out,
         Ok(d) => d,
         Err(err) => return Ok(Out::default().require(false, || format!("the written file cannot be read back: {err}"))),
     };
-    let single =
-        matches!(format, Format::Stl | Format::Gltf | Format::Glb) || (format == Format::Ply && !options.ply.double);
+    let single = matches!(format, Format::Gltf | Format::Glb)
+        || (format == Format::Stl && options.stl == StlEncoding::Binary)
+        || (format == Format::Ply && !options.ply.double);
     let tolerance = if single { 2f64.powi(-23) } else { 0.0 };
     let close = |a: f64, b: f64| (a - b).abs() <= tolerance * a.abs().max(b.abs());
     let same_point = |p: mesh_core::glam::DVec3, q: mesh_core::glam::DVec3| (0..3).all(|k| close(p[k], q[k]));
