@@ -220,11 +220,12 @@ fn compress_op(m: &TriMesh) -> Result<Out, String> {
     Ok(Out::default().field("positions", 1, xyz(c.positions())).field("rms", 1, vec![error.rms]))
 }
 
-/// The signature on whole eigenspaces: from 10 pairs, as many as end on a
-/// gap (a cut through a repeated eigenvalue would make the signature
-/// depend on the basis the solver picked within it).
+/// The signature on whole eigenspaces: from 10 pairs (fewer on tiny
+/// meshes), as many as end on a gap (a cut through a repeated eigenvalue
+/// would make the signature depend on the basis the solver picked within
+/// it).
 fn hks(m: &TriMesh) -> Result<Out, String> {
-    let probe = ManifoldHarmonics::new(m, 10, &HarmonicsOptions::default()).map_err(e)?;
+    let probe = ManifoldHarmonics::new(m, m.vertex_count().min(10), &HarmonicsOptions::default()).map_err(e)?;
     let values = probe.eigenvalues();
     let top = values.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let k = (2..values.len()).rev().find(|&k| values[k] - values[k - 1] > 1e-6 * top).unwrap_or(values.len());
