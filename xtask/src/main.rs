@@ -9,13 +9,20 @@
 //! - `cargo xtask render [--out DIR]`: a gallery of PNG pictures made with
 //!   `mesh render`.
 //! - `cargo xtask publish-check`: packages every publishable crate.
+//! - `cargo xtask fuzz [--iterations N] [--format F] [--seed S]`: structure-aware
+//!   fuzzing of every mesh-io reader, in-process (see RELIABILITY.md).
 
 mod bench;
+mod fuzz;
 mod publish_check;
 mod render;
 mod validate;
 
 use clap::{Parser, Subcommand};
+
+/// Counts allocations so the fuzzer can bound each input's peak.
+#[global_allocator]
+static ALLOCATOR: fuzz::alloc::Counting = fuzz::alloc::Counting;
 
 #[derive(Debug, Parser)]
 #[command(name = "cargo xtask")]
@@ -34,6 +41,8 @@ enum Command {
     Render(render::Args),
     /// Package every publishable crate in dependency order.
     PublishCheck(publish_check::Args),
+    /// Fuzz every mesh reader with mutated files.
+    Fuzz(fuzz::Args),
 }
 
 fn main() {
@@ -43,6 +52,7 @@ fn main() {
         Command::Bench(args) => bench::run(args),
         Command::Render(args) => render::run(args),
         Command::PublishCheck(args) => publish_check::run(args),
+        Command::Fuzz(args) => fuzz::run(args),
     };
     if let Err(e) = result {
         eprintln!("xtask: {e}");

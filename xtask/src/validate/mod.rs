@@ -7,6 +7,7 @@
 mod core;
 mod curvature;
 mod geodesic;
+mod matrix;
 mod nurbs;
 mod param;
 mod scale;
@@ -33,6 +34,8 @@ const GROUPS: &[Group] = &[
     ("spectral", spectral::run),
     ("units", units::run),
     ("wavelet", wavelet::run),
+    ("fuzz", crate::fuzz::validate_group),
+    ("matrix", matrix::run),
 ];
 
 /// Arguments of `cargo xtask validate`.
