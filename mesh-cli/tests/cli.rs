@@ -309,3 +309,44 @@ fn spectral_bad_input_is_an_error_not_a_panic() {
     let (ok, _, stderr) = mesh(&["spectral", path.to_str().unwrap()]);
     assert!(!ok && stderr.starts_with("mesh: error:"), "{stderr}");
 }
+
+#[test]
+fn info_does_not_depend_on_the_unit_of_length() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = dir.path().join("torus.off");
+    let (ok, _, stderr) = mesh(&["generate", "--shape", "torus", "--res", "12", base.to_str().unwrap()]);
+    assert!(ok, "{stderr}");
+    let text = std::fs::read_to_string(&base).unwrap();
+    let reference = json(&["info", "--json", base.to_str().unwrap()]);
+    for scale in [1e-150, 1e150, 1e-300, 1e300] {
+        // The same file with every coordinate multiplied by `scale`.
+        let mut lines = text.lines();
+        let mut out = vec![lines.next().unwrap().to_owned(), lines.next().unwrap().to_owned()];
+        let n: usize = out[1].split_whitespace().next().unwrap().parse().unwrap();
+        for line in lines.by_ref().take(n) {
+            let xyz: Vec<String> =
+                line.split_whitespace().map(|x| format!("{:e}", x.parse::<f64>().unwrap() * scale)).collect();
+            out.push(xyz.join(" "));
+        }
+        out.extend(lines.map(str::to_owned));
+        let path = dir.path().join(format!("torus-{scale:e}.off"));
+        std::fs::write(&path, out.join("\n")).unwrap();
+        let info = json(&["info", "--json", path.to_str().unwrap()]);
+        for key in ["faces", "genus", "components", "degenerate_faces", "coincident_vertices"] {
+            assert_eq!(info[key], reference[key], "{key} at {scale:e}");
+        }
+        let relative = |key: &str, power: i32| {
+            let (a, b) = (info[key].as_f64().unwrap(), reference[key].as_f64().unwrap());
+            (a / scale.powi(power) / b - 1.0).abs()
+        };
+        assert!(relative("mean_edge_length", 1) < 1e-9, "{scale:e}");
+        let out_of_range = info["out_of_range"].as_array().unwrap();
+        if (1e-200..1e200).contains(&scale) {
+            assert!(relative("area", 2) < 1e-9, "{scale:e}");
+            assert_eq!(out_of_range.len(), 1, "the volume {scale:e}^3 is out of range: {out_of_range:?}");
+        } else {
+            assert!(info["area"].is_null() && info["volume"].is_null(), "{info}");
+            assert_eq!(out_of_range.len(), 2, "{out_of_range:?}");
+        }
+    }
+}

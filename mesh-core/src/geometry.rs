@@ -84,7 +84,10 @@ pub fn double_area_vector([a, b, c]: [DVec3; 3]) -> DVec3 {
 /// Area of a triangle.
 #[inline]
 pub fn triangle_area(tri: [DVec3; 3]) -> f64 {
-    0.5 * norm(double_area_vector(tri))
+    // In the triangle's own unit, so that the cross product cannot overflow
+    // (an area past f64::MAX is infinite, never NaN).
+    let (tri, unit) = triangle_in_own_unit(tri);
+    0.5 * norm(double_area_vector(tri)) * unit * unit
 }
 
 /// Unit normal of a counter-clockwise triangle (the seed's face normal, 2.2.2),

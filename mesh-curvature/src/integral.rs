@@ -54,7 +54,7 @@ pub fn integral_curvature(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralC
     let (mesh, unit) = mesh_core::units::normalized(mesh);
     let mut out = integrate(&mesh, nbh.in_unit(unit))?;
     out.mean.iter_mut().for_each(|x| *x *= unit);
-    out.area.iter_mut().for_each(|x| *x *= unit * unit);
+    out.area.iter_mut().for_each(|x| *x = *x * unit * unit);
     Ok(out)
 }
 

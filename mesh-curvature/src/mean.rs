@@ -95,7 +95,7 @@ impl MeanCurvature {
     fn in_unit(mut self, unit: f64) -> Self {
         self.integrated.iter_mut().for_each(|x| *x *= unit);
         self.pointwise.iter_mut().for_each(|x| *x /= unit);
-        self.area.iter_mut().for_each(|x| *x *= unit * unit);
+        self.area.iter_mut().for_each(|x| *x = *x * unit * unit);
         self
     }
 }

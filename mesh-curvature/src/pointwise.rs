@@ -338,12 +338,12 @@ fn estimate(mesh: &TriMesh, options: &PointwiseOptions) -> Result<PointwiseCurva
 impl PointwiseCurvature {
     /// The values of a mesh divided by `unit`, for the mesh itself.
     fn in_unit(mut self, unit: f64) -> Self {
-        let square = unit * unit;
+        // One factor at a time: 0 times an overflowed square would be NaN.
         let per_length = self.tensor.k1.iter_mut().chain(&mut self.tensor.k2).chain(&mut self.mean);
         per_length.chain(&mut self.mean_discrete).for_each(|x| *x /= unit);
-        self.gaussian.iter_mut().chain(&mut self.gaussian_discrete).for_each(|x| *x /= square);
+        self.gaussian.iter_mut().chain(&mut self.gaussian_discrete).for_each(|x| *x = *x / unit / unit);
         self.mean_integrated.iter_mut().chain(&mut self.length).for_each(|x| *x *= unit);
-        self.area.iter_mut().for_each(|x| *x *= square);
+        self.area.iter_mut().for_each(|x| *x = *x * unit * unit);
         self
     }
 }

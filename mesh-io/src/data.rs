@@ -33,6 +33,37 @@ pub struct MeshData {
 }
 
 impl MeshData {
+    /// Drops every normal, texture-coordinate or colour attribute holding
+    /// a NaN or an infinity (a file's `nan`, `inf` or `1e309`), with a note
+    /// in the read report naming the first bad element: positions are
+    /// refused by the readers, attributes are optional, and no NaN leaves
+    /// a reader. Named scalars are the file's own data and are kept. O(V).
+    pub fn without_non_finite_attributes(mut self) -> Self {
+        let mut drop = |what: &str, first: Option<usize>| {
+            if let Some(i) = first {
+                self.report.notes.push(format!("{what} dropped: {what} of element {i} is not finite"));
+                true
+            } else {
+                false
+            }
+        };
+        if drop("normals", self.normals.as_ref().and_then(|n| n.iter().position(|x| !x.is_finite()))) {
+            self.normals = None;
+        }
+        if drop("texture coordinates", self.uvs.as_ref().and_then(|u| u.iter().position(|x| !x.is_finite()))) {
+            self.uvs = None;
+        }
+        let bad_corner = self.corner_uvs.as_ref().and_then(|u| u.iter().position(|t| t.iter().any(|x| !x.is_finite())));
+        if drop("corner texture coordinates", bad_corner) {
+            self.corner_uvs = None;
+        }
+        let bad_colour = self.colors.as_ref().and_then(|c| c.iter().position(|x| x.iter().any(|v| !v.is_finite())));
+        if drop("colours", bad_colour) {
+            self.colors = None;
+        }
+        self
+    }
+
     /// A mesh with no attributes.
     pub fn new(mesh: TriMesh) -> Self {
         Self {

@@ -95,14 +95,15 @@ pub fn read_from(bytes: &[u8], format: Format, options: &ReadOptions) -> Result<
 }
 
 fn read_bytes(bytes: &[u8], format: Format, options: &ReadOptions, dir: Option<&Path>) -> Result<MeshData> {
-    match format {
+    let data = match format {
         Format::Obj => obj::read(bytes),
         Format::Off => off::read(bytes),
         Format::Ply => ply::read(bytes),
         Format::Stl => stl::read(bytes, options.stl_weld_tolerance),
         Format::Gltf => gltf::read(bytes, dir),
         Format::Glb => gltf::check_glb_magic(bytes).and_then(|()| gltf::read(bytes, dir)),
-    }
+    }?;
+    Ok(data.without_non_finite_attributes())
 }
 
 /// Writes a mesh, or a mesh with attributes, atomically (see

@@ -162,8 +162,8 @@ pub fn write<W: Write>(out: W, view: &MeshView<'_>, encoding: StlEncoding) -> Re
     }
 }
 
-fn unit_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
-    (b - a).cross(c - a).normalize_or_zero()
+fn unit_normal(tri: [DVec3; 3]) -> DVec3 {
+    mesh_core::geometry::triangle_normal(tri)
 }
 
 fn write_binary<W: Write>(mut out: W, view: &MeshView<'_>) -> Result<()> {

@@ -107,3 +107,13 @@ fn meshes_without_faces_keep_their_vertices() {
         write(dir.path().join(name), &empty, &WriteOptions::default()).unwrap();
     }
 }
+
+#[test]
+fn non_finite_attributes_are_dropped_with_a_note() {
+    let text = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 inf 1\nvn 0 0 1\nvn 0 0 1\nf 1//1 2//2 3//3\n";
+    let data = mesh_io::read_from(text, mesh_io::Format::Obj, &Default::default()).unwrap();
+    assert!(data.normals.is_none());
+    assert!(!data.report.is_clean());
+    assert!(data.report.notes.iter().any(|n| n.contains("normals dropped")), "{:?}", data.report.notes);
+    assert_eq!(data.mesh.face_count(), 1);
+}

@@ -4,7 +4,7 @@ use mesh_core::{clean, geometry, TriMesh};
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{finite, print_json, CliResult};
+use crate::output::{print_json, CliResult};
 
 /// Arguments of `mesh info`.
 #[derive(Debug, clap::Args)]
@@ -51,10 +51,16 @@ pub struct Info {
     /// Vertices at exactly the position of a lower-numbered vertex, which
     /// exact welding would merge (a surface cut along coincident vertices).
     pub coincident_vertices: usize,
-    /// Total surface area.
-    pub area: f64,
-    /// Signed enclosed volume (meaningful for closed meshes).
+    /// Total surface area (`null` when it lies outside the range of double
+    /// precision, see `out_of_range`).
+    pub area: Option<f64>,
+    /// Signed enclosed volume of a closed mesh (`null` when open, or outside
+    /// the range of double precision).
     pub volume: Option<f64>,
+    /// Quantities whose value has no double-precision representation (a
+    /// mesh in units of 1e-300 has areas of 1e-600), with their order of
+    /// magnitude: never printed as 0 or infinity.
+    pub out_of_range: Vec<String>,
     /// Mean edge length.
     pub mean_edge_length: f64,
     /// Bounding box minimum corner.
@@ -70,6 +76,19 @@ impl Info {
         let report = c.non_manifold_report();
         let bbox = geometry::bounding_box(mesh);
         let closed = c.boundary_loop_count() == Some(0);
+        // Area and volume measured on the mesh in its power-of-two unit,
+        // then carried back (or reported as out of range).
+        let (normalized, unit) = mesh_core::units::normalized(mesh);
+        let mut out_of_range = Vec::new();
+        let mut carry = |name: &str, inner: f64, degree: i32| match rescaled(inner, unit, degree) {
+            Ok(v) => Some(v),
+            Err(magnitude) => {
+                out_of_range.push(format!("{name} {magnitude}"));
+                None
+            }
+        };
+        let area = carry("area", geometry::surface_area(&normalized), 2);
+        let volume = if closed { carry("volume", geometry::enclosed_volume(&normalized), 3) } else { None };
         Info {
             vertices: mesh.vertex_count(),
             faces: mesh.face_count(),
@@ -86,8 +105,9 @@ impl Info {
             duplicate_faces: clean::duplicate_faces(mesh.faces()).len(),
             unreferenced_vertices: clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).len(),
             coincident_vertices: clean::weld_vertices(mesh.positions(), &[], 0.0).map_or(0, |(_, _, merged)| merged),
-            area: geometry::surface_area(mesh),
-            volume: if closed { finite(geometry::enclosed_volume(mesh)) } else { None },
+            area,
+            volume,
+            out_of_range,
             mean_edge_length: geometry::mean_edge_length(mesh),
             bbox_min: bbox.map(|b| b.min.to_array()),
             bbox_max: bbox.map(|b| b.max.to_array()),
@@ -112,11 +132,16 @@ impl Info {
         println!("  duplicate faces    {}", self.duplicate_faces);
         println!("  unreferenced verts {}", self.unreferenced_vertices);
         println!("  coincident verts   {}", self.coincident_vertices);
-        println!("  area               {:.6}", self.area);
-        if let Some(v) = self.volume {
-            println!("  volume             {v:.6}");
+        if let Some(a) = self.area {
+            println!("  area               {}", number(a));
         }
-        println!("  mean edge length   {:.6}", self.mean_edge_length);
+        if let Some(v) = self.volume {
+            println!("  volume             {}", number(v));
+        }
+        for q in &self.out_of_range {
+            println!("  {q} (outside the range of double precision)");
+        }
+        println!("  mean edge length   {}", number(self.mean_edge_length));
         if let (Some(lo), Some(hi)) = (self.bbox_min, self.bbox_max) {
             println!(
                 "  bounding box       [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}]",
@@ -168,5 +193,27 @@ pub fn run(args: &Args) -> CliResult<()> {
         info.print_text(&args.input.describe());
         println!("  read               {}", data.report);
         Ok(())
+    }
+}
+
+/// A quantity of degree `degree` in lengths, measured as `inner` on the mesh
+/// divided by `unit`: its value on the mesh, or its order of magnitude when
+/// that value has no double-precision representation.
+fn rescaled(inner: f64, unit: f64, degree: i32) -> Result<f64, String> {
+    let value = (0..degree).fold(inner, |v, _| v * unit);
+    if inner != 0.0 && inner.is_finite() && !(value.is_finite() && value.abs() >= f64::MIN_POSITIVE) {
+        let exponent = (inner.abs().log10() + f64::from(degree) * unit.log10()).floor();
+        Err(format!("about {}1e{exponent}", if inner < 0.0 { "-" } else { "" }))
+    } else {
+        Ok(value)
+    }
+}
+
+/// Six significant figures, in scientific notation outside [1e-3, 1e6).
+fn number(x: f64) -> String {
+    if x != 0.0 && !(1e-3..1e6).contains(&x.abs()) {
+        format!("{x:.6e}")
+    } else {
+        format!("{x:.6}")
     }
 }

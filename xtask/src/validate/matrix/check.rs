@@ -182,6 +182,61 @@ pub fn same_up_to_scale(result: &Out, reference: &Out, scale: f64) -> Result<(),
     Ok(())
 }
 
+/// Compares, value by value, a scaled mesh's result whose answer leaves the
+/// range of f64 with the unscaled one: where `u * scale^p` overflows the
+/// result must be the infinity of its sign, where it falls below the
+/// smallest subnormal it must be zero (the correctly rounded answers), and
+/// elsewhere equal to [`SCALE_TOLERANCE`] relative (or tiny, in the
+/// subnormal range); never NaN.
+pub fn saturated(result: &Out, reference: &Out, scale: f64) -> Result<(), String> {
+    for (r, u) in result.fields.iter().zip(&reference.fields) {
+        if r.values.len() != u.values.len() {
+            return Err(format!("{}: {} values, unscaled {}", r.name, r.values.len(), u.values.len()));
+        }
+        let p = match r.scaling {
+            Scaling::Exact if r.values != u.values => {
+                return Err(format!("{}: {:?} vs unscaled {:?}", r.name, r.values, u.values))
+            }
+            Scaling::Exact => continue,
+            Scaling::Power(p) => p,
+        };
+        let (high, low) = if r.single { (38.5, -45.0) } else { (308.2, -323.0) };
+        let largest = magnitude(&u.values);
+        for (i, (&x, &y)) in r.values.iter().zip(&u.values).enumerate() {
+            let bad = |why: &str| Err(format!("{}[{i}] = {x:e}, unscaled {y:e}: {why}", r.name));
+            if x.is_nan() {
+                return bad("NaN");
+            }
+            if y.is_infinite() {
+                if x != y {
+                    return bad("not the unscaled infinity");
+                }
+                continue;
+            }
+            // Back to the unit scale one factor at a time.
+            let back = (0..p.unsigned_abs()).fold(x, |v, _| if p > 0 { v / scale } else { v * scale });
+            let noise = y.abs() <= SCALE_TOLERANCE * largest;
+            let log = if y == 0.0 { f64::NEG_INFINITY } else { y.abs().log10() + p as f64 * scale.log10() };
+            let ok = if noise {
+                // A value at the rounding-noise level of its field: any
+                // number (its noise may saturate either way), never NaN.
+                !x.is_nan()
+            } else if log > high {
+                x.is_infinite() && x.signum() == y.signum()
+            } else if log < low {
+                x == 0.0
+            } else {
+                // Within the tolerance of the field's largest value.
+                x.is_finite() && (back - y).abs() <= SCALE_TOLERANCE * largest
+            };
+            if !ok {
+                return bad("not the correctly rounded rescaled value");
+            }
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -199,5 +254,11 @@ mod tests {
         let k = Out::default().field("k", -2, vec![2.0]);
         assert!(!representable(&k, 1e300));
         assert!(representable(&k, 1e100));
+        // Past the range: the correctly rounded values (0 and infinity) pass.
+        assert!(saturated(&Out::default().field("k", -2, vec![0.0]), &k, 1e300).is_ok());
+        assert!(saturated(&Out::default().field("k", -2, vec![1e-300]), &k, 1e300).is_err());
+        let a = Out::default().field("a", 2, vec![2.0, 0.0]);
+        assert!(saturated(&Out::default().field("a", 2, vec![f64::INFINITY, 0.0]), &a, 1e300).is_ok());
+        assert!(saturated(&Out::default().field("a", 2, vec![f64::NAN, 0.0]), &a, 1e300).is_err());
     }
 }
