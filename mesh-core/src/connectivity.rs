@@ -436,6 +436,10 @@ impl Connectivity {
 
     /// `Ok` for an oriented 2-manifold, otherwise [`MeshError::NonManifold`]
     /// listing every defect.
+    ///
+    /// # Errors
+    /// [`MeshError::NonManifold`] with the full report when an edge has more than two faces, a
+    /// vertex more than one fan, or two faces disagree on orientation.
     pub fn require_manifold(&self) -> Result<()> {
         if self.report.is_empty() {
             Ok(())
@@ -480,6 +484,9 @@ impl Connectivity {
 
     /// Boundary loops of a manifold mesh, in order of their first half-edge
     /// (cached). Fails with [`MeshError::NonManifold`] otherwise.
+    ///
+    /// # Errors
+    /// [`MeshError::NonManifold`] on a non-manifold mesh (see [`Connectivity::require_manifold`]).
     pub fn boundary_loops(&self) -> Result<&[BoundaryLoop]> {
         self.require_manifold()?;
         Ok(self.boundary_loops.get_or_init(|| {

@@ -29,6 +29,11 @@ pub struct TriMesh {
 impl TriMesh {
     /// Builds a mesh after checking that every index is in range, every
     /// coordinate finite and no triangle repeats a vertex. Cost O(V + F).
+    ///
+    /// # Errors
+    /// [`MeshError::TooLarge`] past `u32` indices, [`MeshError::NonFinitePosition`] naming the
+    /// first vertex with a NaN or infinite coordinate, [`MeshError::IndexOutOfRange`] naming the
+    /// face and index, [`MeshError::RepeatedVertex`] for a triangle that names a vertex twice.
     pub fn new(positions: Vec<DVec3>, faces: Vec<[u32; 3]>) -> Result<Self> {
         if positions.len() >= u32::MAX as usize {
             return Err(MeshError::TooLarge { what: "vertex", count: positions.len() });
@@ -61,6 +66,10 @@ impl TriMesh {
 
     /// Builds a mesh from flat coordinate and index arrays (`xyz` holds three
     /// numbers per vertex, `indices` three per triangle).
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] when either array's length is not a multiple of 3; then those of
+    /// [`TriMesh::new`].
     pub fn from_flat(xyz: &[f64], indices: &[u32]) -> Result<Self> {
         if !xyz.len().is_multiple_of(3) {
             return Err(MeshError::Dimension(format!("{} coordinates is not a multiple of 3", xyz.len())));
@@ -87,6 +96,10 @@ impl TriMesh {
     }
 
     /// Replaces all positions at once (same count), keeping the connectivity.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a different vertex count, [`MeshError::NonFinitePosition`]
+    /// naming the first non-finite vertex.
     pub fn set_positions(&mut self, positions: Vec<DVec3>) -> Result<()> {
         if positions.len() != self.positions.len() {
             return Err(MeshError::Dimension(format!(
@@ -159,6 +172,9 @@ impl TriMesh {
 
     /// The connectivity, or [`MeshError::NonManifold`] with every defect when the
     /// mesh is not an oriented 2-manifold (with or without boundary).
+    ///
+    /// # Errors
+    /// [`MeshError::NonManifold`] with the report (see [`crate::Connectivity::require_manifold`]).
     pub fn manifold_connectivity(&self) -> Result<&Connectivity> {
         let c = self.connectivity();
         c.require_manifold()?;

@@ -42,6 +42,9 @@ fn check_positive(name: &'static str, value: f64) -> Result<()> {
 ///
 /// Truth: all vertices on |x| = 1; V = 10 * 4^level + 2, F = 20 * 4^level,
 /// chi = 2, genus 0. Level 5 has 10,242 vertices; level 8, 655,362.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for a level whose vertex count would exceed the shapes' limit.
 pub fn icosphere(level: u32) -> Result<TriMesh> {
     if level > 12 {
         return Err(MeshError::InvalidOption { name: "level", reason: format!("{level} is above 12") });
@@ -124,6 +127,10 @@ pub fn midpoint_subdivide(mesh: &TriMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
 ///
 /// Truth: |x| = radius; V = segments (rings - 1) + 2, F = 2 segments (rings - 1),
 /// chi = 2.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for a radius that is not positive and finite, too few segments or
+/// rings, or too many vertices.
 pub fn uv_sphere(radius: f64, segments: usize, rings: usize) -> Result<TriMesh> {
     check_positive("radius", radius)?;
     check_min("segments", segments, 3)?;
@@ -167,6 +174,10 @@ pub fn uv_sphere(radius: f64, segments: usize, rings: usize) -> Result<TriMesh> 
 /// Truth: V = nu nv, F = 2 nu nv, chi = 0, genus 1. Principal curvatures
 /// 1/r (around the tube) and cos v / (R + r cos v) (along it); Gaussian
 /// curvature cos v / (r (R + r cos v)).
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for radii that are not positive and finite (or a minor radius not
+/// below the major), too few segments, or too many vertices.
 pub fn torus(major: f64, minor: f64, nu: usize, nv: usize) -> Result<TriMesh> {
     check_positive("major", major)?;
     check_positive("minor", minor)?;
@@ -202,6 +213,9 @@ pub fn torus(major: f64, minor: f64, nu: usize, nv: usize) -> Result<TriMesh> {
 /// [`torus`]: v = atan2(z, |(x, y)| - R)). `jitter` must lie in [0, 0.5).
 ///
 /// Truth: as [`torus`] (V = nu nv, F = 2 nu nv, chi = 0, genus 1).
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for a jitter outside `[0, 0.5)`, and those of [`torus`].
 pub fn irregular_torus(major: f64, minor: f64, nu: usize, nv: usize, jitter: f64, seed: u64) -> Result<TriMesh> {
     if !(0.0..0.5).contains(&jitter) {
         return Err(MeshError::InvalidOption { name: "jitter", reason: format!("{jitter} is not in [0, 0.5)") });
@@ -252,6 +266,10 @@ fn periodic_grid_faces(nu: usize, nv: usize, wrap_j: bool) -> Vec<[u32; 3]> {
 ///
 /// Truth: V = around (along + 1), F = 2 around along, chi = 0, two boundary
 /// loops, genus 0; principal curvatures 1/radius and 0, normals outward.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for a radius or height that is not positive and finite, or too few
+/// segments.
 pub fn cylinder(radius: f64, height: f64, around: usize, along: usize) -> Result<TriMesh> {
     check_positive("radius", radius)?;
     check_positive("height", height)?;
@@ -273,6 +291,10 @@ pub fn cylinder(radius: f64, height: f64, around: usize, along: usize) -> Result
 /// Vertex `j * (nx + 1) + i` is at (width i / nx, height j / ny).
 ///
 /// Truth: V = (nx + 1)(ny + 1), F = 2 nx ny, chi = 1, one boundary loop.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for a size that is not positive and finite, or fewer than one cell
+/// along a side.
 pub fn grid(width: f64, height: f64, nx: usize, ny: usize) -> Result<TriMesh> {
     check_positive("width", width)?;
     check_positive("height", height)?;
@@ -304,6 +326,9 @@ pub fn grid(width: f64, height: f64, nx: usize, ny: usize) -> Result<TriMesh> {
 ///
 /// Truth: V = 1 + 3 rings (rings + 1), F = 6 rings^2, chi = 1, one boundary
 /// loop, area -> pi and boundary length -> 2 pi under refinement; normal +z.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for `rings = 0` or too many vertices.
 pub fn disk(rings: usize, seed: u64) -> Result<TriMesh> {
     check_min("rings", rings, 1)?;
     check_count("rings^2", (3 * rings as u128).saturating_mul(rings as u128 + 1))?;
@@ -353,6 +378,9 @@ pub fn disk(rings: usize, seed: u64) -> Result<TriMesh> {
 ///
 /// Truth: V = 6 n^2 + 2, F = 12 n^2, chi = 2, area 24, volume 8; twelve
 /// feature edges chains of dihedral angle pi/2.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for `n = 0` or too many vertices.
 pub fn cube(n: usize) -> Result<TriMesh> {
     check_min("n", n, 1)?;
     check_count("n^2", (6 * n as u128).saturating_mul(n as u128))?;
@@ -415,6 +443,9 @@ pub const SHAPE_NAMES: &[&str] = &["icosphere", "uv-sphere", "torus", "cylinder"
 /// canonical sizes used in the documentation: unit sphere, torus R = 2,
 /// r = 0.5, unit cylinder of height 2, unit square grid, unit disk, cube
 /// [-1, 1]^3.
+///
+/// # Errors
+/// [`MeshError::InvalidOption`] for an unknown name, and those of the shape's own function.
 pub fn by_name(name: &str, n: usize) -> Result<TriMesh> {
     match name {
         "icosphere" => icosphere(u32::try_from(n).unwrap_or(u32::MAX)),

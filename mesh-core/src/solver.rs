@@ -31,6 +31,9 @@ use sprs::CsMat;
 use crate::error::{MeshError, Result};
 
 /// Copies a sprs matrix into faer's compressed-column format.
+///
+/// # Errors
+/// [`MeshError::Solver`] when faer cannot hold the matrix (out of memory or index overflow).
 pub fn to_faer(a: &CsMat<f64>) -> Result<SparseColMat<usize, f64>> {
     let csc;
     let a = if a.is_csc() {
@@ -108,6 +111,10 @@ impl Cholesky {
     /// Analyses and factors `a`. Cost: one symbolic analysis plus one numeric
     /// factorization (for a 40k-vertex Laplacian about 0.1 s on this machine
     /// class). Fails when `a` is not positive definite.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a matrix that is not square; [`MeshError::Solver`] when it is
+    /// not symmetric positive definite (naming the failing pivot) or memory runs out.
     pub fn new(a: &CsMat<f64>) -> Result<Self> {
         check_square(a)?;
         let a = to_faer(a)?;
@@ -149,6 +156,10 @@ impl Cholesky {
 
     /// Refactors a matrix with the same sparsity pattern as the one given to
     /// [`Cholesky::new`] (e.g. `M + t L` for another `t`), reusing the analysis.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a matrix that is not square or whose pattern differs from the
+    /// analysed one; [`MeshError::Solver`] when it is not positive definite.
     pub fn refactor(&mut self, a: &CsMat<f64>) -> Result<()> {
         if check_square(a)? != self.dim() {
             return Err(MeshError::Dimension(format!("refactor with {} rows, expected {}", a.rows(), self.dim())));
@@ -167,6 +178,10 @@ impl Cholesky {
 
     /// Solves `A x = b` in place; `b` may hold several right-hand sides one
     /// after the other (column-major, `b.len()` a multiple of the dimension).
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] when `b.len()` is not a multiple of the dimension;
+    /// [`MeshError::Solver`] when the workspace cannot be allocated.
     pub fn solve_in_place(&self, b: &mut [f64]) -> Result<()> {
         let n = self.dim();
         check_rhs(n, b.len())?;
@@ -177,6 +192,9 @@ impl Cholesky {
     }
 
     /// Solves `A x = b` for one or several stacked right-hand sides.
+    ///
+    /// # Errors
+    /// Those of [`Cholesky::solve_in_place`].
     pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>> {
         let mut x = b.to_vec();
         self.solve_in_place(&mut x)?;
@@ -184,6 +202,10 @@ impl Cholesky {
     }
 
     /// Solves in place for the columns of a faer matrix.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a row count other than the dimension; [`MeshError::Solver`]
+    /// when the workspace cannot be allocated.
     pub fn solve_mat_in_place(&self, b: MatMut<'_, f64>) -> Result<()> {
         let n = self.dim();
         if b.nrows() != n {
@@ -207,6 +229,10 @@ pub struct Lu {
 impl Lu {
     /// Factors `a`. Fails on structurally or numerically singular matrices
     /// (faer reports these) and checks the factors on a probe solve.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a matrix that is not square; [`MeshError::Solver`] when it is
+    /// singular.
     pub fn new(a: &CsMat<f64>) -> Result<Self> {
         let n = check_square(a)?;
         let fa = to_faer(a)?;
@@ -226,6 +252,9 @@ impl Lu {
     }
 
     /// Solves `A x = b` in place for one or several stacked right-hand sides.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] when `b.len()` is not a multiple of the dimension.
     pub fn solve_in_place(&self, b: &mut [f64]) -> Result<()> {
         check_rhs(self.n, b.len())?;
         if self.n == 0 {
@@ -237,6 +266,9 @@ impl Lu {
     }
 
     /// Solves `A x = b` for one or several stacked right-hand sides.
+    ///
+    /// # Errors
+    /// Those of [`Lu::solve_in_place`].
     pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>> {
         let mut x = b.to_vec();
         self.solve_in_place(&mut x)?;
@@ -282,6 +314,10 @@ pub struct DirichletSolver {
 impl DirichletSolver {
     /// Splits `a` into free and `fixed` unknowns (indices, any order,
     /// duplicates ignored) and factors the free block.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a matrix that is not square or a fixed index out of range; the
+    /// errors of the chosen factorization of the free block.
     pub fn new(a: &CsMat<f64>, fixed: &[usize], factorization: Factorization) -> Result<Self> {
         let n = check_square(a)?;
         let mut is_fixed = vec![false; n];
@@ -360,6 +396,9 @@ impl DirichletSolver {
     /// Solves for all `n` unknowns given the values of the fixed ones (in the
     /// order of [`DirichletSolver::fixed`]) and the right-hand side `b` (length
     /// n; `None` for zero). Fixed entries of the result equal the given values.
+    ///
+    /// # Errors
+    /// Those of [`DirichletSolver::solve_many`].
     pub fn solve(&self, fixed_values: &[f64], b: Option<&[f64]>) -> Result<Vec<f64>> {
         let rhs = b.map(|b| [b]);
         let mut x = self.solve_many(&[fixed_values], rhs.as_ref().map(|r| &r[..]))?;
@@ -370,6 +409,10 @@ impl DirichletSolver {
     /// factorization): system `c` has fixed values `fixed_values[c]` and
     /// right-hand side `rhs[c]` (zero when `rhs` is `None`). A non-finite
     /// solution is an error naming the unknown.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for value or right-hand-side lengths that do not match;
+    /// [`MeshError::Solver`] naming the first unknown whose solution is not finite.
     pub fn solve_many(&self, fixed_values: &[&[f64]], rhs: Option<&[&[f64]]>) -> Result<Vec<Vec<f64>>> {
         let k = fixed_values.len();
         if let Some(r) = rhs {

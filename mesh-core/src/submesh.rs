@@ -27,6 +27,10 @@ impl SubMesh {
     /// Spreads per-vertex values of the piece onto the parent's vertices,
     /// writing `fill` wherever the piece has no vertex. `values` must have
     /// one entry per vertex of the piece. Cost O(V_parent).
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] when `values` has not one entry per vertex of the piece, or the
+    /// parent is smaller than the piece's largest vertex.
     pub fn scatter<T: Clone>(&self, values: &[T], parent_vertex_count: usize, fill: T) -> Result<Vec<T>> {
         if values.len() != self.vertices.len() {
             return Err(MeshError::Dimension(format!(
@@ -68,6 +72,9 @@ impl TriMesh {
     /// The faces `faces` (in the given order) and the vertices they use, as a
     /// mesh of their own. Errors on a face index out of range or a repeated
     /// face. Cost O(V + F).
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidOption`] for a face index out of range.
     pub fn submesh(&self, faces: &[FaceId]) -> Result<SubMesh> {
         let mut new_index = vec![u32::MAX; self.vertex_count()];
         let mut seen = vec![false; self.face_count()];
@@ -99,6 +106,9 @@ impl TriMesh {
 
     /// Connected component `component` (numbered as in
     /// [`crate::Connectivity::components`]) as a mesh of its own. Cost O(V + F).
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidOption`] for a component index past the count.
     pub fn component(&self, component: usize) -> Result<SubMesh> {
         let components = self.connectivity().components();
         if component >= components.count {
@@ -116,6 +126,9 @@ impl TriMesh {
 
     /// The connected component with the most faces ([`Components::largest`])
     /// as a mesh of its own. Errors on a mesh without faces. Cost O(V + F).
+    ///
+    /// # Errors
+    /// [`MeshError::Empty`] for a mesh without faces.
     pub fn largest_component(&self) -> Result<SubMesh> {
         let largest = self.connectivity().components().largest().ok_or(MeshError::Empty)?;
         self.component(largest)

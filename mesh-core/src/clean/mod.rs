@@ -152,6 +152,11 @@ pub fn unreferenced_vertices(vertex_count: usize, faces: &[[u32; 3]]) -> Vec<Ver
 /// Indices must be in range and coordinates finite (otherwise the same errors
 /// as [`TriMesh::new`]); faces that repeat a vertex, before or after welding,
 /// are dropped and counted as collapsed.
+///
+/// # Errors
+/// [`MeshError::IndexOutOfRange`] and [`MeshError::NonFinitePosition`] for input [`TriMesh::new`]
+/// would refuse (repeated corners are dropped instead), [`MeshError::InvalidOption`] for a weld
+/// tolerance that is negative, not finite or larger than the bounding-box diagonal.
 pub fn clean(positions: Vec<DVec3>, faces: Vec<[u32; 3]>, options: &CleanOptions) -> Result<(TriMesh, CleanReport)> {
     let mut report = CleanReport::default();
     // Validate indices and coordinates first, allowing repeated vertices.
@@ -254,6 +259,9 @@ fn compact_vertices(positions: Vec<DVec3>, mut faces: Vec<[u32; 3]>) -> (Vec<DVe
 
 impl TriMesh {
     /// A repaired copy of this mesh and what changed (see [`clean`]).
+    ///
+    /// # Errors
+    /// Those of [`clean`].
     pub fn cleaned(&self, options: &CleanOptions) -> Result<(TriMesh, CleanReport)> {
         clean(self.positions().to_vec(), self.faces().to_vec(), options)
     }

@@ -58,6 +58,9 @@ pub struct IntrinsicTriangulation {
 impl IntrinsicTriangulation {
     /// The mesh itself as an intrinsic triangulation (lengths from positions),
     /// mollified by `mollify` (see [`IntrinsicOptions::mollify`]).
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidOption`] for a mollification that is negative or not finite.
     pub fn from_mesh(mesh: &TriMesh, mollify: f64) -> Result<Self> {
         if !(mollify >= 0.0 && mollify.is_finite()) {
             return Err(MeshError::InvalidOption { name: "mollify", reason: format!("{mollify} is not >= 0") });
@@ -96,6 +99,9 @@ impl IntrinsicTriangulation {
     /// every interior edge whose cotangent weight is negative until none is
     /// (each flip strictly improves the triangulation, so this terminates;
     /// typically O(E) flips). Works on any input; edges without twins stay.
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidOption`] for a negative or non-finite tolerance or mollification.
     pub fn delaunay(mesh: &TriMesh, options: &IntrinsicOptions) -> Result<Self> {
         if !(options.tolerance >= 0.0 && options.tolerance.is_finite()) {
             return Err(MeshError::InvalidOption { name: "tolerance", reason: format!("{}", options.tolerance) });
