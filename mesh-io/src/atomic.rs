@@ -1,8 +1,11 @@
 //! Atomic file writes: readers of a path see the old file or the complete new
 //! one, never a partial write.
 
-use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::fs::{File, OpenOptions};
+use std::io::{BufWriter, ErrorKind, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{SystemTime, UNIX_EPOCH};
 
 use crate::error::IoError;
 
@@ -36,28 +39,58 @@ pub fn write_atomic<E: From<IoError>>(
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let prefix = format!(".{}.", path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default());
-    let mut tmp = temp_builder(&prefix).tempfile_in(dir).map_err(io)?;
+    let name = path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default();
+    let mut tmp = TempFile::create(dir, &name).map_err(io)?;
     {
-        let mut out = BufWriter::with_capacity(1 << 16, tmp.as_file_mut());
+        let mut out = BufWriter::with_capacity(1 << 16, &mut tmp.file);
         write(&mut out)?;
         out.flush().map_err(io)?;
     }
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
+    tmp.persist(path).map_err(io)
 }
 
-/// Temporary files are hidden, named after the target, and (on Unix) get the
-/// permissions of a newly created file (0666 less the umask) instead of 0600.
-fn temp_builder(prefix: &str) -> tempfile::Builder<'_, 'static> {
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(prefix).suffix(".tmp");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
+/// A hidden temporary file beside the target, removed on drop unless
+/// persisted. Created with `create_new` (never an existing file) and the
+/// permissions of any new file (0666 less the umask). Written here rather
+/// than taken from the tempfile crate, which brought eight crates into
+/// mesh-io's dependency tree for these few lines.
+struct TempFile {
+    path: Option<PathBuf>,
+    file: File,
+}
+
+impl TempFile {
+    fn create(dir: &Path, target: &str) -> std::io::Result<Self> {
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+        let nanos = SystemTime::now().duration_since(UNIX_EPOCH).map_or(0, |d| d.subsec_nanos());
+        let mut last = None;
+        for _ in 0..64 {
+            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+            let path = dir.join(format!(".{target}.{:x}-{nanos:x}-{n}.tmp", std::process::id()));
+            match OpenOptions::new().write(true).create_new(true).open(&path) {
+                Ok(file) => return Ok(Self { path: Some(path), file }),
+                Err(e) if e.kind() == ErrorKind::AlreadyExists => last = Some(e),
+                Err(e) => return Err(e),
+            }
+        }
+        Err(last.unwrap_or_else(|| ErrorKind::AlreadyExists.into()))
     }
-    builder
+
+    /// Renames the file over `target` (atomic within one file system).
+    fn persist(mut self, target: &Path) -> std::io::Result<()> {
+        let path = self.path.take().ok_or(ErrorKind::NotFound)?;
+        std::fs::rename(&path, target).inspect_err(|_| {
+            let _ = std::fs::remove_file(&path);
+        })
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        if let Some(path) = &self.path {
+            let _ = std::fs::remove_file(path);
+        }
+    }
 }
 
 #[cfg(test)]

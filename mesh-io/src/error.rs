@@ -184,6 +184,7 @@ pub enum IoError {
         problem: &'static str,
     },
     /// The glTF JSON is malformed or does not validate.
+    #[cfg(feature = "gltf")]
     #[error("{at}: {source}")]
     Gltf {
         /// Where.
@@ -235,8 +236,9 @@ impl IoError {
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
             | Self::ExternalBuffer { at, .. }
-            | Self::Precision { at, .. }
-            | Self::Gltf { at, .. } => Some(at),
+            | Self::Precision { at, .. } => Some(at),
+            #[cfg(feature = "gltf")]
+            Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }
     }
@@ -252,8 +254,9 @@ impl IoError {
             | Self::Unsupported { at, .. }
             | Self::Mesh { at, .. }
             | Self::ExternalBuffer { at, .. }
-            | Self::Precision { at, .. }
-            | Self::Gltf { at, .. } => Some(at),
+            | Self::Precision { at, .. } => Some(at),
+            #[cfg(feature = "gltf")]
+            Self::Gltf { at, .. } => Some(at),
             Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
         }
     }

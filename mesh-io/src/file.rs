@@ -10,10 +10,12 @@ use crate::atomic::write_atomic;
 use crate::data::{MeshData, MeshView};
 use crate::error::{IoError, Result};
 use crate::format::Format;
+#[cfg(feature = "gltf")]
+use crate::gltf;
 use crate::ply::PlyOptions;
 use crate::precision::{self, Narrowed, WriteReport};
 use crate::stl::StlEncoding;
-use crate::{gltf, obj, off, ply, stl};
+use crate::{obj, off, ply, stl};
 
 /// Options of [`read_with`] and [`read_from`].
 #[derive(Debug, Clone, PartialEq)]
@@ -100,8 +102,15 @@ fn read_bytes(bytes: &[u8], format: Format, options: &ReadOptions, dir: Option<&
         Format::Off => off::read(bytes),
         Format::Ply => ply::read(bytes),
         Format::Stl => stl::read(bytes, options.stl_weld_tolerance),
+        #[cfg(feature = "gltf")]
         Format::Gltf => gltf::read(bytes, dir),
+        #[cfg(feature = "gltf")]
         Format::Glb => gltf::check_glb_magic(bytes).and_then(|()| gltf::read(bytes, dir)),
+        #[cfg(not(feature = "gltf"))]
+        Format::Gltf | Format::Glb => {
+            let _ = dir;
+            Err(without_gltf(format))
+        }
     }?;
     Ok(data.without_non_finite_attributes())
 }
@@ -160,10 +169,26 @@ pub fn write_to<'a, W: Write>(
         Format::Off => off::write(out, &view),
         Format::Ply => ply::write(out, &view, &options.ply),
         Format::Stl => stl::write(out, &view, options.stl),
+        #[cfg(feature = "gltf")]
         Format::Gltf => gltf::write_gltf(out, &view),
+        #[cfg(feature = "gltf")]
         Format::Glb => gltf::write_glb(out, &view),
+        #[cfg(not(feature = "gltf"))]
+        Format::Gltf | Format::Glb => {
+            let _ = out;
+            Err(without_gltf(format))
+        }
     }?;
     Ok(report)
+}
+
+/// The error for glTF data when the `gltf` feature is off.
+#[cfg(not(feature = "gltf"))]
+fn without_gltf(format: Format) -> IoError {
+    IoError::Unsupported {
+        at: crate::Location::new(format),
+        what: "glTF (mesh-io was built without its `gltf` feature)".into(),
+    }
 }
 
 /// The parts of a view `format` stores as 32-bit floats.

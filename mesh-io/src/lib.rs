@@ -13,7 +13,8 @@
 //!   of what the reader changed (polygons triangulated, faces dropped,
 //!   vertices welded); [`MeshView`]: what the writers take.
 //! - One module per format with small free functions: [`obj`], [`off`],
-//!   [`ply`], [`stl`], [`gltf`].
+//!   [`ply`], [`stl`], `gltf` (default feature `gltf`; without it glTF
+//!   files are an [`IoError::Unsupported`] and the gltf crate is not built).
 //! - [`IoError`]: one error type naming the file, the line and what was
 //!   expected. No input makes a reader panic; header counts are checked
 //!   against the data size before anything is allocated.
@@ -49,6 +50,7 @@ pub mod data;
 pub mod error;
 pub mod file;
 pub mod format;
+#[cfg(feature = "gltf")]
 pub mod gltf;
 pub mod obj;
 pub mod off;
