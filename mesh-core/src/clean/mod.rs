@@ -92,6 +92,23 @@ pub struct CleanReport {
 }
 
 impl CleanReport {
+    /// Every count of the report, in the order of the fields.
+    pub fn counts(&self) -> [usize; 11] {
+        [
+            self.welded_vertices,
+            self.collapsed_faces,
+            self.degenerate_faces,
+            self.duplicate_faces,
+            self.unreferenced_vertices,
+            self.fin_edges,
+            self.detached_faces,
+            self.cut_edges,
+            self.split_vertices,
+            self.flipped_faces,
+            self.unorientable_components,
+        ]
+    }
+
     /// `true` when nothing changed.
     pub fn is_unchanged(&self) -> bool {
         *self == Self { unorientable_components: self.unorientable_components, ..Self::default() }

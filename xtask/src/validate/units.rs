@@ -209,21 +209,7 @@ const DIRTY: &[Operation] = &[
 
 /// Counts that describe a cleaning: vertices and faces left, and the report.
 fn counts(mesh: &TriMesh, r: &mesh_core::clean::CleanReport) -> Vec<f64> {
-    [
-        mesh.vertex_count(),
-        mesh.face_count(),
-        r.welded_vertices,
-        r.collapsed_faces,
-        r.degenerate_faces,
-        r.duplicate_faces,
-        r.unreferenced_vertices,
-        r.fin_edges,
-        r.detached_faces,
-        r.split_vertices,
-        r.flipped_faces,
-    ]
-    .map(|x| x as f64)
-    .to_vec()
+    [mesh.vertex_count(), mesh.face_count()].into_iter().chain(r.counts()).map(|x| x as f64).collect()
 }
 
 /// Parameterizations, as `u v` of every vertex divided by the map's size

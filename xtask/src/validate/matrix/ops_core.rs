@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use mesh_core::clean::{CleanOptions, CleanReport};
+use mesh_core::clean::CleanOptions;
 use mesh_core::geometry::{self, NormalWeighting};
 use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
 use mesh_core::TriMesh;
@@ -136,29 +136,11 @@ fn intrinsic(m: &TriMesh) -> Result<Out, String> {
         .require(defect.is_none(), || defect.unwrap_or_default()))
 }
 
-fn report_counts(r: &CleanReport) -> Vec<f64> {
-    [
-        r.welded_vertices,
-        r.collapsed_faces,
-        r.degenerate_faces,
-        r.duplicate_faces,
-        r.unreferenced_vertices,
-        r.fin_edges,
-        r.detached_faces,
-        r.cut_edges,
-        r.split_vertices,
-        r.flipped_faces,
-        r.unorientable_components,
-    ]
-    .map(|n| n as f64)
-    .to_vec()
-}
-
 fn clean_with(m: &TriMesh, options: &CleanOptions) -> Result<(TriMesh, Out), String> {
     let (c, report) = m.cleaned(options).map_err(e)?;
     let out = Out::default()
         .field("positions", 1, xyz(c.positions()))
-        .counts("faces, report", [vec![c.face_count() as f64], report_counts(&report)].concat());
+        .counts("faces, report", [vec![c.face_count() as f64], report.counts().map(|n| n as f64).to_vec()].concat());
     Ok((c, out))
 }
 
