@@ -59,20 +59,21 @@ pub fn power_of_two_near(x: f64) -> f64 {
     }
 }
 
-/// The triangle moved to its first corner and divided by a power of two
-/// near its size, and that power: `([0, b - a, c - a] / unit, unit)`, with
-/// `unit = 1` when the size lies in `[1e-60, 1e60]`. Angles, cotangents and
-/// normals computed on the result are those of the triangle, without
-/// overflow or underflow whatever the unit of length.
+/// The triangle divided by a power of two near the size of its edges, and
+/// that power: `([a, b, c] / unit, unit)`, the triangle itself and 1 when
+/// its edges' coordinates lie in `[1e-60, 1e60]` (division by a power of two
+/// is exact, so no digit changes). Angles, cotangents and normals computed
+/// on the result are those of the triangle, without overflow or underflow
+/// whatever the unit of length.
 #[inline]
-pub fn triangle_in_own_unit([a, b, c]: [DVec3; 3]) -> ([DVec3; 3], f64) {
-    let (ab, ac) = (b - a, c - a);
-    let m = ab.abs().max(ac.abs()).max_element();
+pub fn triangle_in_own_unit(tri: [DVec3; 3]) -> ([DVec3; 3], f64) {
+    let [a, b, c] = tri;
+    let m = (b - a).abs().max((c - a).abs()).max_element();
     if (m > 1e-60 && m < 1e60) || m == 0.0 || !m.is_finite() {
-        return ([DVec3::ZERO, ab, ac], 1.0);
+        return (tri, 1.0);
     }
     let unit = power_of_two_near(m);
-    ([DVec3::ZERO, ab / unit, ac / unit], unit)
+    (tri.map(|p| p / unit), unit)
 }
 
 /// Twice the signed area vector of a triangle: (b - a) x (c - a).
@@ -173,9 +174,9 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
                 // Corner k lies between edge k (to the next corner) and edge k + 2.
                 [0, 1, 2].map(|k| {
                     area_sum[tri[k] as usize] += area2;
-                    let (l1, l2) = (len2[k], len2[(k + 2) % 3]);
-                    if l1 > 0.0 && l2 > 0.0 {
-                        area2 / l1 / l2
+                    let w = len2[k] * len2[(k + 2) % 3];
+                    if w > 0.0 {
+                        area2 / w
                     } else {
                         DVec3::ZERO
                     }
