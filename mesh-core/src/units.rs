@@ -34,6 +34,19 @@ pub fn length_unit(mesh: &TriMesh) -> f64 {
     }
 }
 
+/// A power of two near the largest magnitude among the finite `values`
+/// (`unit <= largest < 2 unit`), by which they can be divided exactly; 1
+/// when none is finite and non-zero. For quantities that are not lengths
+/// (masses, matrix entries) that must be brought to a safe range. O(n).
+pub fn unit_of(values: impl IntoIterator<Item = f64>) -> f64 {
+    let largest = values.into_iter().filter(|x| x.is_finite()).fold(0.0_f64, |m, x| m.max(x.abs()));
+    if largest > 0.0 {
+        power_of_two_near(largest)
+    } else {
+        1.0
+    }
+}
+
 /// The mesh in a unit where nothing over- or underflows, and that unit: the
 /// mesh itself and 1 when its [`length_unit`] lies in `[2^-100, 2^100]`,
 /// otherwise a copy with every position divided by the unit (exact; the
@@ -78,6 +91,14 @@ mod tests {
                 assert!(n.positions().iter().zip(m.positions()).all(|(a, b)| *a * u == *b));
             }
         }
+    }
+
+    #[test]
+    fn unit_of_values_ignores_what_is_not_finite() {
+        assert_eq!(unit_of([3.0, -1e-300, f64::NAN]), 2.0);
+        assert_eq!(unit_of([-5e300, f64::INFINITY]), power_of_two_near(5e300));
+        assert_eq!(unit_of([0.0, f64::NAN]), 1.0);
+        assert_eq!(unit_of(std::iter::empty()), 1.0);
     }
 
     #[test]

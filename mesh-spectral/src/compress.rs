@@ -93,9 +93,7 @@ fn curve(
     for &v in &harmonics.eigenpairs().excluded {
         excluded[v] = true;
     }
-    let largest = harmonics.mass().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    let mass_unit =
-        if largest > 0.0 && largest.is_finite() { mesh_core::geometry::power_of_two_near(largest) } else { 1.0 };
+    let mass_unit = mesh_core::units::unit_of(harmonics.mass().iter().copied());
     let mass: Vec<f64> = harmonics.mass().iter().map(|m| m / mass_unit).collect();
     let total_mass: f64 = mass.iter().sum();
     let counted = excluded.iter().filter(|e| !**e).count().max(1) as f64;

@@ -246,9 +246,8 @@ impl ManifoldHarmonics {
         // M f carries the unit of length cubed for positions: form it from
         // the mass and values divided by powers of two near their sizes, and
         // bring the factors back one at a time.
-        let near = |x: f64| if x > 0.0 && x.is_finite() { mesh_core::geometry::power_of_two_near(x) } else { 1.0 };
-        let mass_unit = near(self.mass.iter().fold(0.0, |m, x| x.abs().max(m)));
-        let value_unit = near((0..f.ncols()).flat_map(|j| f.col(j).iter().copied()).fold(0.0, |m, x| x.abs().max(m)));
+        let mass_unit = mesh_core::units::unit_of(self.mass.iter().copied());
+        let value_unit = mesh_core::units::unit_of((0..f.ncols()).flat_map(|j| f.col(j).iter().copied()));
         let mf = Mat::from_fn(f.nrows(), f.ncols(), |i, j| (self.mass[i] / mass_unit) * (f[(i, j)] / value_unit));
         let mut c = Mat::zeros(self.len(), f.ncols());
         tall::gram(c.as_mut(), self.pairs.vectors(), mf.as_ref());

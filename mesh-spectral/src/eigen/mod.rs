@@ -392,10 +392,9 @@ struct Units {
 
 impl Units {
     fn of(l: &CsMat<f64>, m: &CsMat<f64>) -> Self {
-        let size = |a: &CsMat<f64>| a.data().iter().fold(0.0_f64, |s, x| s.max(x.abs()));
-        let near = |x: f64| if x > 0.0 && x.is_finite() { mesh_core::geometry::power_of_two_near(x) } else { 1.0 };
+        let unit = |a: &CsMat<f64>| mesh_core::units::unit_of(a.data().iter().copied());
         let safe = |x: f64| (2f64.powi(-100)..=2f64.powi(100)).contains(&x);
-        let (lu, mu) = (near(size(l)), near(size(m)));
+        let (lu, mu) = (unit(l), unit(m));
         if safe(lu) && safe(mu) {
             return Self { l: 1.0, m: 1.0 };
         }
