@@ -1,14 +1,17 @@
 //! A counting global allocator: the bytes currently allocated and the peak
 //! since the last [`reset_peak`], so the fuzzer can fail an input that makes a
-//! reader allocate far more than its size justifies. Requests that would take
+//! reader allocate far more than its size justifies. Inside [`limited`]
+//! (the fuzzer's and the matrix's hostile inputs), requests that would take
 //! the total past [`HARD_LIMIT`] are refused (the process aborts with the
-//! allocation error) instead of exhausting the machine's memory; the fuzzer
+//! allocation error) instead of exhausting the machine's memory; every other
+//! command of xtask (bench and validate on 1e6-vertex meshes) is only
+//! counted, never limited. The fuzzer
 //! prints how to reproduce the input it was running first (see
 //! [`set_context`]). Cost: two relaxed atomic operations per call.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::io::Write;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// Allocations past this many bytes in all are refused.
@@ -16,6 +19,22 @@ pub const HARD_LIMIT: usize = 2 << 30;
 
 static CURRENT: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
+/// Whether [`HARD_LIMIT`] is enforced (inside [`limited`]).
+static LIMITED: AtomicBool = AtomicBool::new(false);
+
+/// Runs `f` with [`HARD_LIMIT`] enforced.
+pub fn limited<T>(f: impl FnOnce() -> T) -> T {
+    /// Lifts the limit again, also when `f` unwinds.
+    struct Lift;
+    impl Drop for Lift {
+        fn drop(&mut self) {
+            LIMITED.store(false, Ordering::Relaxed);
+        }
+    }
+    LIMITED.store(true, Ordering::Relaxed);
+    let _lift = Lift;
+    f()
+}
 
 /// What to print when an allocation is refused (the current fuzz input).
 static CONTEXT: Mutex<[u8; 256]> = Mutex::new([0; 256]);
@@ -26,7 +45,7 @@ pub struct Counting;
 impl Counting {
     fn grow(&self, bytes: usize) -> bool {
         let now = CURRENT.fetch_add(bytes, Ordering::Relaxed) + bytes;
-        if now > HARD_LIMIT {
+        if now > HARD_LIMIT && LIMITED.load(Ordering::Relaxed) {
             CURRENT.fetch_sub(bytes, Ordering::Relaxed);
             refused(bytes);
             return false;

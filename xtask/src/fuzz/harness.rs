@@ -38,7 +38,7 @@ pub fn run(bytes: &[u8], format: Format) -> Outcome {
     alloc::reset_peak();
     let base = alloc::current();
     let start = Instant::now();
-    let result = panics::catch(|| pipeline(bytes, format));
+    let result = alloc::limited(|| panics::catch(|| pipeline(bytes, format)));
     let seconds = start.elapsed().as_secs_f64();
     let peak_bytes = alloc::peak().saturating_sub(base);
     let (parsed, mut finding) = match result {

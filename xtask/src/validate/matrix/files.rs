@@ -146,7 +146,9 @@ pub fn run(v: &mut Validator) {
         alloc::reset_peak();
         let base = alloc::current();
         let start = Instant::now();
-        let result = panics::quietly(|| panics::catch(|| mesh_io::read_from(&bytes, format, &ReadOptions::default())));
+        let result = alloc::limited(|| {
+            panics::quietly(|| panics::catch(|| mesh_io::read_from(&bytes, format, &ReadOptions::default())))
+        });
         let seconds = start.elapsed().as_secs_f64();
         let mb = alloc::peak().saturating_sub(base) as f64 / (1 << 20) as f64;
         let (ok, note) = match result {
