@@ -101,15 +101,30 @@ pub fn dijkstra(mesh: &TriMesh, sources: &[VertexId], options: &DijkstraOptions)
         source_index: vec![u32::MAX; n],
     };
     let seeds: Vec<(VertexId, u32)> = sources.iter().enumerate().map(|(i, &s)| (s, i as u32)).collect();
-    propagate(mesh, &seeds, options.max_distance, &mut paths);
+    propagate(mesh, &seeds, options.max_distance, robust_lengths(mesh), &mut paths);
     Ok(paths)
+}
+
+/// `true` when the mesh's size lies outside `[2^-100, 2^100]`, where squared
+/// edge lengths could over- or underflow: edge lengths then go through
+/// [`mesh_core::geometry::norm`] (about 20% slower than a plain length,
+/// so only there). O(V).
+pub(crate) fn robust_lengths(mesh: &TriMesh) -> bool {
+    !(2f64.powi(-100)..=2f64.powi(100)).contains(&mesh_core::units::length_unit(mesh))
 }
 
 /// Dijkstra from `seeds` (vertex, label) into an existing labelling: a vertex
 /// is updated only where the new distance is strictly smaller than the one
 /// already stored, which makes repeated calls an exact incremental
-/// multi-source search (farthest-point sampling). Seeds must be in range.
-pub(crate) fn propagate(mesh: &TriMesh, seeds: &[(VertexId, u32)], max_distance: f64, paths: &mut ShortestPaths) {
+/// multi-source search (farthest-point sampling). Seeds must be in range;
+/// `robust` comes from [`robust_lengths`].
+pub(crate) fn propagate(
+    mesh: &TriMesh,
+    seeds: &[(VertexId, u32)],
+    max_distance: f64,
+    robust: bool,
+    paths: &mut ShortestPaths,
+) {
     let conn = mesh.connectivity();
     let p = mesh.positions();
     let mut heap = BinaryHeap::with_capacity(seeds.len() + 64);
@@ -135,7 +150,8 @@ pub(crate) fn propagate(mesh: &TriMesh, seeds: &[(VertexId, u32)], max_distance:
             if distance[w.idx()] <= d {
                 return; // settled (or about to be): no shorter path through v
             }
-            let nd = d + mesh_core::geometry::norm(p[w.idx()] - pv);
+            let edge = p[w.idx()] - pv;
+            let nd = d + if robust { mesh_core::geometry::norm(edge) } else { edge.length() };
             if nd < distance[w.idx()] {
                 distance[w.idx()] = nd;
                 predecessor[w.idx()] = v;

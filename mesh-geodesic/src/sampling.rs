@@ -11,7 +11,7 @@
 
 use mesh_core::{TriMesh, VertexId, VertexKind};
 
-use crate::dijkstra::{propagate, ShortestPaths};
+use crate::dijkstra::{propagate, robust_lengths, ShortestPaths};
 use crate::error::{GeodesicError, Result};
 use crate::fmm::{FastMarching, FmmOptions, March};
 use crate::support::validate_sources;
@@ -154,7 +154,8 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
 /// Incremental front propagation for either metric.
 enum Front<'a> {
     Fmm(FastMarching, March),
-    Dijkstra(&'a TriMesh, ShortestPaths),
+    /// The mesh, the tree, and whether lengths need the robust norm.
+    Dijkstra(&'a TriMesh, ShortestPaths, bool),
 }
 
 impl<'a> Front<'a> {
@@ -169,6 +170,7 @@ impl<'a> Front<'a> {
                     predecessor: vec![VertexId::INVALID; n],
                     source_index: vec![u32::MAX; n],
                 },
+                robust_lengths(mesh),
             ),
         })
     }
@@ -202,10 +204,10 @@ impl<'a> Front<'a> {
     fn add(&mut self, seed: VertexId, label: u32, distance: &mut Vec<f64>, region: &mut Vec<u32>) {
         match self {
             Front::Fmm(fmm, march) => march.run(fmm, &[(seed, label)], f64::INFINITY, distance, region),
-            Front::Dijkstra(mesh, tree) => {
+            Front::Dijkstra(mesh, tree, robust) => {
                 std::mem::swap(&mut tree.distance, distance);
                 std::mem::swap(&mut tree.source_index, region);
-                propagate(mesh, &[(seed, label)], f64::INFINITY, tree);
+                propagate(mesh, &[(seed, label)], f64::INFINITY, *robust, tree);
                 std::mem::swap(&mut tree.distance, distance);
                 std::mem::swap(&mut tree.source_index, region);
             }
