@@ -41,7 +41,7 @@ fn library(e: CliError, given: Given<'_>, on_file: impl Fn(CliError) -> CliError
         Ok(e) => return io(*e),
         Err(e) => e,
     };
-    let e = match e.downcast::<mesh_core::MeshError>() {
+    let e = match e.downcast::<mesh_kernel::MeshError>() {
         Ok(e) => return on_file(core(*e, given)),
         Err(e) => e,
     };
@@ -116,9 +116,9 @@ fn internal_step(name: &str) -> String {
     }
 }
 
-/// A mesh-core error in command-line terms.
-pub fn core(e: mesh_core::MeshError, given: Given<'_>) -> CliError {
-    use mesh_core::MeshError;
+/// A mesh-kernel error in command-line terms.
+pub fn core(e: mesh_kernel::MeshError, given: Given<'_>) -> CliError {
+    use mesh_kernel::MeshError;
     match &e {
         MeshError::InvalidOption { name, reason } => option(name, reason, given),
         MeshError::Empty => "the mesh has no faces; this command needs a surface".into(),

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_io::MeshData;
 
 use crate::output::CliResult;

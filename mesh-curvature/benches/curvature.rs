@@ -5,7 +5,7 @@
 //! `cargo bench -p mesh-curvature -- --warm-up-time 1 --measurement-time 3`
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, GaussianOptions, MeanOptions, Method,
     Neighborhood, TensorOptions,

@@ -4,8 +4,8 @@
 
 use std::f64::consts::TAU;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::*;
 
 /// Per-vertex truth: k1, k2, and the k1 direction when it is defined.

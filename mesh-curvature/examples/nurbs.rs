@@ -4,7 +4,7 @@
 //! vertices against the exact per-vertex values, with the observed orders.
 //! Run with `cargo run --release -p mesh-curvature --example nurbs`.
 
-use mesh_core::{VertexId, VertexKind};
+use mesh_kernel::{VertexId, VertexKind};
 use mesh_curvature::{curvature_tensor, TensorOptions};
 use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{shapes, tessellate, GridOptions, NurbsSurface};

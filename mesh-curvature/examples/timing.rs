@@ -4,7 +4,7 @@
 
 use std::time::Instant;
 
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_curvature::*;
 
 /// CPU time of the calling thread in ns (`clock_gettime` with
@@ -73,9 +73,9 @@ fn main() {
     ] {
         best(name, reps, &mut || drop(curvature_tensor(&mesh, &o).unwrap()));
     }
-    best("connectivity", reps, &mut || drop(mesh_core::Connectivity::new(mesh.vertex_count(), mesh.faces())));
-    best("cotan_laplacian", reps, &mut || drop(mesh_core::operators::cotan_laplacian(&mesh)));
-    let mixed = mesh_core::operators::MassKind::MixedVoronoi;
-    best("lumped_mass", reps, &mut || drop(mesh_core::operators::lumped_mass(&mesh, mixed)));
+    best("connectivity", reps, &mut || drop(mesh_kernel::Connectivity::new(mesh.vertex_count(), mesh.faces())));
+    best("cotan_laplacian", reps, &mut || drop(mesh_kernel::operators::cotan_laplacian(&mesh)));
+    let mixed = mesh_kernel::operators::MassKind::MixedVoronoi;
+    best("lumped_mass", reps, &mut || drop(mesh_kernel::operators::lumped_mass(&mesh, mixed)));
     best("normals max", reps, &mut || drop(normals::vertex_normals(&mesh, Normals::Max)));
 }

@@ -1,8 +1,8 @@
 //! The area a vertex stands for, which turns integrated curvature into
 //! pointwise curvature.
 
-use mesh_core::operators::{lumped_mass, MassKind};
-use mesh_core::TriMesh;
+use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::TriMesh;
 
 /// Which vertex area divides integrated curvature.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -17,7 +17,7 @@ pub enum AreaKind {
 }
 
 impl AreaKind {
-    /// The mesh-core mass kind behind it.
+    /// The mesh-kernel mass kind behind it.
     pub fn mass_kind(self) -> MassKind {
         match self {
             Self::MixedVoronoi => MassKind::MixedVoronoi,
@@ -26,7 +26,7 @@ impl AreaKind {
     }
 }
 
-/// Per-vertex area of the given kind ([`mesh_core::operators::lumped_mass`]). O(F).
+/// Per-vertex area of the given kind ([`mesh_kernel::operators::lumped_mass`]). O(F).
 pub fn vertex_areas(mesh: &TriMesh, kind: AreaKind) -> Vec<f64> {
     lumped_mass(mesh, kind.mass_kind())
 }

@@ -8,7 +8,7 @@ use thiserror::Error;
 pub enum CurvatureError {
     /// An error of the underlying mesh (invalid input, non-manifold, ...).
     #[error(transparent)]
-    Mesh(#[from] mesh_core::MeshError),
+    Mesh(#[from] mesh_kernel::MeshError),
     /// An option is out of its valid range.
     #[error("invalid option `{name}`: {reason}")]
     InvalidOption {

@@ -20,7 +20,7 @@
 //! neighbourhood passes.
 
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::error::Result;
 use crate::frame::{solve_spd, tangent_basis, InverseBlock, Sym2};

@@ -4,7 +4,7 @@
 use std::f64::consts::{PI, TAU};
 
 use glam::DVec3;
-use mesh_core::{TriMesh, VertexKind};
+use mesh_kernel::{TriMesh, VertexKind};
 
 use crate::area::{vertex_areas, AreaKind};
 use crate::error::Result;
@@ -60,9 +60,9 @@ impl GaussianCurvature {
 ///
 /// # Errors
 /// None in practice for a valid `TriMesh` (the result type leaves room for `CurvatureError::Mesh` from
-/// mesh-core's geometry); unreliable vertices are flagged in the output, not refused.
+/// mesh-kernel's geometry); unreliable vertices are flagged in the output, not refused.
 pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mut k = angle_defect(&mesh, options)?;
     k.pointwise.iter_mut().for_each(|x| *x = *x / unit / unit);
     k.area.iter_mut().for_each(|x| *x = *x * unit * unit);
@@ -74,7 +74,7 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
     let conn = mesh.connectivity();
     let (angles, area) = par::join(|| corner_angles(mesh), || vertex_areas(mesh, options.area));
     let sums = par::map(mesh.vertex_count(), |i| {
-        let v = mesh_core::VertexId::new(i);
+        let v = mesh_kernel::VertexId::new(i);
         compensated_sum(conn.outgoing(v).iter().map(|h| angles[h.face().idx()][h.corner()]))
     });
     let mut status = topological_status(mesh);
@@ -118,7 +118,7 @@ pub(crate) fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
 pub(crate) fn triangle_angles(tri: [DVec3; 3]) -> [f64; 3] {
     // Edge k runs from corner k to corner k + 1.
     let e = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
-    let double_area = mesh_core::geometry::norm(e[0].cross(e[2]));
+    let double_area = mesh_kernel::geometry::norm(e[0].cross(e[2]));
     let len2 = e.map(|x| x.length_squared());
     let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
         0

@@ -2,7 +2,7 @@
 //! section 2.5): the integral of the Gaussian and mean curvature over the
 //! union of the mixed Voronoi cells of a vertex's neighbourhood.
 
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::area::AreaKind;
 use crate::error::Result;
@@ -51,7 +51,7 @@ impl IntegralCurvature {
 /// and positive; the errors of [`crate::gaussian_curvature`] and [`crate::mean_curvature`].
 pub fn integral_curvature(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralCurvature> {
     let nbh = nbh.validate()?;
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mut out = integrate(&mesh, nbh.in_unit(unit))?;
     out.mean.iter_mut().for_each(|x| *x *= unit);
     out.area.iter_mut().for_each(|x| *x = *x * unit * unit);

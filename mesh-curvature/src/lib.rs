@@ -8,7 +8,7 @@
 //! | function | what it computes | chapter |
 //! |---|---|---|
 //! | [`gaussian_curvature`] | angle defect, integrated and pointwise, boundary geodesic curvature (Gauss-Bonnet exact) | eq. 2.25 |
-//! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_core::operators::cotan_laplacian`] | eq. 2.26 |
+//! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_kernel::operators::cotan_laplacian`] | eq. 2.26 |
 //! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`Method`]: quartic (default), cubic or quadric [jet fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
 //! | [`pointwise_curvature`] | [`PointwiseCurvature`]: pointwise `K = k1 k2` and `H = (k1 + k2) / 2` from the tensor (accurate on irregular meshes), the discrete values (angle defect, cotangent formula) and their integrals, with a [`CurvatureFlag`] wherever a value is not an estimate (zero-area faces, ill-conditioned fits, curvature past the sampling's resolution) | eq. 2.19-2.20, 2.25-2.26 |
 //! | [`integral_curvature`] | Gaussian and mean curvature integrated over a k-ring or ball | 2.5 |
@@ -23,7 +23,7 @@
 //!
 //! ```
 //! use mesh_curvature::{curvature_tensor, gaussian_curvature, mean_curvature, TensorOptions};
-//! use mesh_core::shapes;
+//! use mesh_kernel::shapes;
 //!
 //! let sphere = shapes::icosphere(4)?;
 //! let k = gaussian_curvature(&sphere, &Default::default())?;
@@ -67,7 +67,7 @@ pub use pointwise::{
 pub use status::{StatusCounts, VertexStatus};
 pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, Method, TensorOptions};
 
-pub use mesh_core::TriMesh;
+pub use mesh_kernel::TriMesh;
 
 /// The code blocks of README.md, run as doc-tests.
 #[cfg(doctest)]

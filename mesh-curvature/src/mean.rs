@@ -2,8 +2,8 @@
 //! normal of Meyer, Desbrun, Schroeder and Barr 2003.
 
 use glam::DVec3;
-use mesh_core::operators::cotan_laplacian;
-use mesh_core::TriMesh;
+use mesh_kernel::operators::cotan_laplacian;
+use mesh_kernel::TriMesh;
 
 use crate::area::{vertex_areas, AreaKind};
 use crate::error::{CurvatureError, Result};
@@ -49,7 +49,7 @@ pub struct MeanCurvature {
 }
 
 /// Mean curvature of every vertex from the cotangent Laplacian
-/// ([`mesh_core::operators::cotan_laplacian`]): `H n = (L x)_i / (2 A_i)`
+/// ([`mesh_kernel::operators::cotan_laplacian`]): `H n = (L x)_i / (2 A_i)`
 /// (eq. 2.26, Meyer et al. 2003), integrated and pointwise.
 ///
 /// Works on any mesh: zero-area faces add no stiffness, values are finite
@@ -61,7 +61,7 @@ pub struct MeanCurvature {
 /// None in practice for a valid `TriMesh` (the result type leaves room for `CurvatureError::Mesh`); vertices
 /// where the estimate cannot be trusted are flagged in [`MeanCurvature::status`].
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let (normals, (lx, area)) =
         par::join(|| vertex_normals(&mesh, options.normals), || laplacian_and_area(&mesh, options.area));
     Ok(assemble(&mesh, lx, area, &normals).in_unit(unit))
@@ -85,7 +85,7 @@ pub fn mean_curvature_with_normals(mesh: &TriMesh, area: AreaKind, normals: &[DV
             reason: format!("{} normals for {} vertices", normals.len(), mesh.vertex_count()),
         });
     }
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let (lx, area) = laplacian_and_area(&mesh, area);
     Ok(assemble(&mesh, lx, area, normals).in_unit(unit))
 }

@@ -2,7 +2,7 @@
 //! breadth-first search over the mesh edges.
 
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::error::{CurvatureError, Result};
 
@@ -149,7 +149,7 @@ impl Gatherer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn rings_of_a_regular_grid() {

@@ -11,8 +11,8 @@
 //! around it.
 
 use glam::DVec3;
-use mesh_core::geometry::dihedral_angles;
-use mesh_core::TriMesh;
+use mesh_kernel::geometry::dihedral_angles;
+use mesh_kernel::TriMesh;
 
 use crate::area::{vertex_areas, AreaKind};
 use crate::frame::Sym2;

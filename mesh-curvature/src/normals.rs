@@ -6,11 +6,11 @@
 //! its two edges at the vertex divided by both squared edge lengths. It is
 //! exact whenever the vertex and its 1-ring lie on a sphere, and is what
 //! Rusinkiewicz 2004 uses. All weightings come from
-//! [`mesh_core::geometry::vertex_normals`].
+//! [`mesh_kernel::geometry::vertex_normals`].
 
 use glam::DVec3;
-use mesh_core::geometry::{vertex_normals as core_normals, NormalWeighting};
-use mesh_core::TriMesh;
+use mesh_kernel::geometry::{vertex_normals as core_normals, NormalWeighting};
+use mesh_kernel::TriMesh;
 
 /// Which vertex normal the estimators use.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -44,7 +44,7 @@ pub fn vertex_normals(mesh: &TriMesh, normals: Normals) -> Vec<DVec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn max_normals_are_exact_on_spheres() {

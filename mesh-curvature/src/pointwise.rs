@@ -17,9 +17,9 @@
 use std::fmt;
 use std::str::FromStr;
 
-use mesh_core::clean::is_degenerate_triangle;
-use mesh_core::operators::laplacian::DEGENERATE_TOLERANCE;
-use mesh_core::TriMesh;
+use mesh_kernel::clean::is_degenerate_triangle;
+use mesh_kernel::operators::laplacian::DEGENERATE_TOLERANCE;
+use mesh_kernel::TriMesh;
 
 use crate::area::AreaKind;
 use crate::error::{CurvatureError, Result};
@@ -177,7 +177,7 @@ impl FlagCounts {
 /// Sign convention: curvatures are positive where the surface bends away
 /// from its normal, and the normal is the one the faces' orientation gives
 /// (counter-clockwise seen from the side it points to). With outward faces
-/// (mesh-core's shapes, most scans) a sphere of radius `r` has `k1 = k2 = H
+/// (mesh-kernel's shapes, most scans) a sphere of radius `r` has `k1 = k2 = H
 /// = 1 / r`, convex regions have `H > 0`, and `mean`, `mean_discrete` and
 /// `mean_integrated` share this sign at every vertex: the discrete mean
 /// curvature is signed by the tensor's fitted normal. Gaussian curvature
@@ -268,7 +268,7 @@ pub fn pointwise_curvature(mesh: &TriMesh, options: &PointwiseOptions) -> Result
             reason: format!("must be positive, got {}", options.resolution),
         });
     }
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     Ok(estimate(&mesh, options)?.in_unit(unit))
 }
 
@@ -382,7 +382,7 @@ pub const NEAR_DUPLICATE: f64 = 0.2;
 /// at the scale of the neighbourhood, only about the scan's noise.
 /// O(sum of 2-ring sizes), parallel over vertices.
 pub fn sampling_length(mesh: &TriMesh) -> Vec<f64> {
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mut length = sampling_length_in_unit(&mesh);
     length.iter_mut().for_each(|x| *x *= unit);
     length
@@ -406,7 +406,7 @@ fn sampling_length_in_unit(mesh: &TriMesh) -> Vec<f64> {
 }
 
 /// `true` for the vertices of a zero-area face (the cotangent Laplacian's
-/// test, `mesh_core::operators::laplacian::DEGENERATE_TOLERANCE`). O(F).
+/// test, `mesh_kernel::operators::laplacian::DEGENERATE_TOLERANCE`). O(F).
 fn touches_zero_area_face(mesh: &TriMesh) -> Vec<bool> {
     let p = mesh.positions();
     let mut out = vec![false; mesh.vertex_count()];

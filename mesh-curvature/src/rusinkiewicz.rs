@@ -3,14 +3,14 @@
 //! derivatives on triangle meshes").
 
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::frame::{rotate_between, solve_spd, Sym2};
 use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
-use mesh_core::operators::mixed_voronoi_corners;
+use mesh_kernel::operators::mixed_voronoi_corners;
 
 /// The tensor of one face in its own frame, and the weight of each corner.
 #[derive(Debug, Clone, Copy)]
@@ -90,7 +90,7 @@ pub(crate) fn estimate(mesh: &TriMesh, normals: Normals) -> Vec<LocalTensor> {
         }
         let mut local = LocalTensor::new(n, Sym2::default(), status[i]);
         let (mut sum, mut weight) = (Sym2::default(), 0.0);
-        for h in conn.outgoing(mesh_core::VertexId::new(i)) {
+        for h in conn.outgoing(mesh_kernel::VertexId::new(i)) {
             if let Some(face) = &per_face[h.face().idx()] {
                 let w = face.corner_weight[h.corner()];
                 sum = sum.add(to_vertex_frame(face, n, local.t1).scaled(w));

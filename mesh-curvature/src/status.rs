@@ -52,8 +52,8 @@ impl VertexStatus {
 
 /// Status from the connectivity alone (no geometry): interior vertices are
 /// `Valid` until an estimator finds them degenerate. O(V).
-pub(crate) fn topological_status(mesh: &mesh_core::TriMesh) -> Vec<VertexStatus> {
-    use mesh_core::VertexKind;
+pub(crate) fn topological_status(mesh: &mesh_kernel::TriMesh) -> Vec<VertexStatus> {
+    use mesh_kernel::VertexKind;
     let conn = mesh.connectivity();
     conn.vertex_kinds()
         .iter()

@@ -2,7 +2,7 @@
 //! principal curvatures and directions, and the estimators that produce it.
 
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::error::Result;
 use crate::fit::{self, FitOptions};
@@ -155,11 +155,11 @@ pub fn curvedness(k1: f64, k2: f64) -> f64 {
 ///
 /// # Errors
 /// `CurvatureError::InvalidOption` (`rings` or `radius`) for an invalid neighbourhood of the normal-cycle
-/// method; the errors of the fitting method (`CurvatureError::Mesh` for geometry mesh-core refuses).
+/// method; the errors of the fitting method (`CurvatureError::Mesh` for geometry mesh-kernel refuses).
 pub fn curvature_tensor(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> {
     // Fits square and multiply coordinates: estimate in a unit where nothing
     // over- or underflows, then bring the curvatures (1 / length) back.
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let method = match options.method {
         Method::Fit(fit) => Method::Fit(FitOptions { neighborhood: fit.neighborhood.in_unit(unit), ..fit }),
         Method::NormalCycle(nbh) => Method::NormalCycle(nbh.in_unit(unit)),

@@ -5,8 +5,8 @@ mod common;
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{gaussian_curvature, AreaKind, GaussianOptions, VertexStatus};
 use proptest::prelude::*;
 
@@ -110,7 +110,7 @@ fn sphere_curvature_with_both_areas() {
         let k = gaussian_curvature(&m, &GaussianOptions { area }).unwrap();
         assert!(k.status.iter().all(|s| s.is_valid()));
         let total_area: f64 = k.area.iter().sum();
-        assert!((total_area - mesh_core::geometry::surface_area(&m)).abs() < 1e-12);
+        assert!((total_area - mesh_kernel::geometry::surface_area(&m)).abs() < 1e-12);
         k.pointwise.iter().map(|x| (x - 1.0).abs()).fold(0.0, f64::max)
     };
     let (mixed, barycentric) = (worst(AreaKind::MixedVoronoi), worst(AreaKind::Barycentric));

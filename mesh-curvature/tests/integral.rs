@@ -4,7 +4,7 @@ mod common;
 
 use std::f64::consts::PI;
 
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_curvature::{
     curvature_tensor, curvedness, gaussian_curvature, integral_curvature, shape_index, CurvatureError, GaussianOptions,
     Neighborhood, TensorOptions,
@@ -21,7 +21,7 @@ fn a_ball_covering_everything_integrates_the_whole_surface() {
         assert!((ic.gaussian[i] - 4.0 * PI).abs() < 1e-10);
         // H = 1 integrated over the inscribed polyhedron's area.
         assert!((ic.mean[i] / ic.area[i] - 1.0).abs() < 1e-5);
-        assert!((ic.area[i] - mesh_core::geometry::surface_area(&sphere)).abs() < 1e-10);
+        assert!((ic.area[i] - mesh_kernel::geometry::surface_area(&sphere)).abs() < 1e-10);
     }
     let torus = shapes::torus(2.0, 0.5, 48, 12).unwrap();
     let ic = integral_curvature(&torus, Neighborhood::Rings(100)).unwrap();

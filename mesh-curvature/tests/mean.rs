@@ -3,8 +3,8 @@
 
 mod common;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{mean_curvature, MeanOptions, Normals, VertexStatus};
 
 #[test]

@@ -1,5 +1,5 @@
 //! Ground truth from exact surfaces: mesh-nurbs tessellations carry the
-//! exact principal curvatures of every vertex, on grids unlike mesh-core's
+//! exact principal curvatures of every vertex, on grids unlike mesh-kernel's
 //! (rational, non-uniform parameter spacing; each cell split along its
 //! shorter diagonal, so valences 4 to 8 mix). The default estimator must
 //! converge there too.
@@ -10,7 +10,7 @@
 //! (64 x 16 to 256 x 64 grids), without converging. The conditioning test
 //! of the fit now sends such vertices to the 3-ring.
 
-use mesh_core::{VertexId, VertexKind};
+use mesh_kernel::{VertexId, VertexKind};
 use mesh_curvature::{curvature_tensor, TensorOptions};
 use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{shapes, tessellate, GridOptions, NurbsSurface};

@@ -7,8 +7,8 @@ mod common;
 
 use std::f64::consts::TAU;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::*;
 use proptest::prelude::*;
 
@@ -106,7 +106,7 @@ fn one_sign_convention_for_every_mean_curvature() {
     }
     assert!(compared > up.vertex_count() / 2, "{compared}");
     // Boundary vertices: the discrete values are flagged, the tensor's are not.
-    let boundary = up.connectivity().vertex_kinds().iter().filter(|k| **k == mesh_core::VertexKind::Boundary).count();
+    let boundary = up.connectivity().vertex_kinds().iter().filter(|k| **k == mesh_kernel::VertexKind::Boundary).count();
     assert_eq!(cu.discrete_flag_counts().get(CurvatureFlag::Boundary), boundary);
     assert_eq!(cu.flag_counts().total(), 0);
 }

@@ -4,8 +4,8 @@
 mod common;
 
 use common::{errors, order};
-use mesh_core::glam::{DMat3, DVec3};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::{DMat3, DVec3};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{
     curvature_tensor, CurvatureError, CurvatureTensor, Degree, FitOptions, Method, Neighborhood, Normals,
     TensorOptions, VertexStatus,
@@ -158,7 +158,7 @@ fn only_the_refined_fits_converge_at_irregular_vertices() {
 #[test]
 fn ball_neighbourhoods_work_like_rings() {
     let (m, truth) = common::torus(128, 32);
-    let h = mesh_core::geometry::mean_edge_length(&m);
+    let h = mesh_kernel::geometry::mean_edge_length(&m);
     let nc = errors(&tensor(&m, Method::NormalCycle(Neighborhood::Ball(1.1 * h))), &truth);
     assert!(nc.k1 < 0.02 && nc.k2 < 0.05, "{nc:?}");
     let fit = Method::Fit(FitOptions { neighborhood: Neighborhood::Ball(2.5 * h), ..Default::default() });
@@ -211,7 +211,7 @@ fn every_method_is_well_formed_on_every_data_mesh() {
         for method in all_methods() {
             let t = tensor(&m, method);
             assert_well_formed(&t, &format!("{name} {method:?}"));
-            let interior = m.connectivity().vertex_kinds().iter().filter(|k| **k == mesh_core::VertexKind::Interior);
+            let interior = m.connectivity().vertex_kinds().iter().filter(|k| **k == mesh_kernel::VertexKind::Interior);
             let valid = t.status.iter().filter(|s| s.is_valid()).count();
             // Degenerate vertices are rare (the zero-area file has a few).
             assert!(valid + 8 >= interior.count(), "{name} {method:?}");

@@ -7,7 +7,7 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
     dijkstra, exact_distance, farthest_point_sampling, trace_path, DijkstraOptions, FastMarching, FmmOptions,
     FmmUpdate, HeatGeodesics, HeatLaplacian, HeatOptions, SamplingOptions, SurfacePoint, TraceOptions,

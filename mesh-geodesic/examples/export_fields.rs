@@ -10,7 +10,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, exact_distance, heat_distance, FastMarching, FmmOptions, FmmUpdate, HeatOptions};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -30,7 +30,7 @@ fn read(path: &Path) -> Res<TriMesh> {
         let mut num = || -> Res<f64> { Ok(tokens.next().ok_or("truncated OFF")?.parse::<f64>()?) };
         let (nv, nf, _) = (num()? as usize, num()? as usize, num()?);
         for _ in 0..nv {
-            positions.push(mesh_core::glam::DVec3::new(num()?, num()?, num()?));
+            positions.push(mesh_kernel::glam::DVec3::new(num()?, num()?, num()?));
         }
         for _ in 0..nf {
             let k = num()? as usize;
@@ -43,7 +43,7 @@ fn read(path: &Path) -> Res<TriMesh> {
             match it.next() {
                 Some("v") => {
                     let c = it.take(3).map(|t| t.parse::<f64>()).collect::<Result<Vec<f64>, _>>()?;
-                    positions.push(mesh_core::glam::DVec3::new(c[0], c[1], c[2]));
+                    positions.push(mesh_kernel::glam::DVec3::new(c[0], c[1], c[2]));
                 }
                 Some("f") => {
                     let idx = it

@@ -3,13 +3,13 @@
 //! tree and edge-path extraction.
 //!
 //! Edge weights are the Euclidean edge lengths. The graph is walked through
-//! the [`mesh_core::Connectivity`] vertex rings (no adjacency matrix is
+//! the [`mesh_kernel::Connectivity`] vertex rings (no adjacency matrix is
 //! built); the priority queue is a binary heap with lazy deletion. Cost
 //! O((V + E) log V) time, O(V) memory.
 
 use std::collections::BinaryHeap;
 
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::{TriMesh, VertexId};
 
 use crate::error::{GeodesicError, Result};
 use crate::support::{for_each_neighbor, validate_sources, HeapEntry};
@@ -72,7 +72,7 @@ impl ShortestPaths {
 /// Duplicate sources are allowed. Cost O((V + E) log V).
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{dijkstra, DijkstraOptions};
 ///
 /// let mesh = shapes::icosphere(3)?;
@@ -107,10 +107,10 @@ pub fn dijkstra(mesh: &TriMesh, sources: &[VertexId], options: &DijkstraOptions)
 
 /// `true` when the mesh's size lies outside `[2^-100, 2^100]`, where squared
 /// edge lengths could over- or underflow: edge lengths then go through
-/// [`mesh_core::geometry::norm`] (about 20% slower than a plain length,
+/// [`mesh_kernel::geometry::norm`] (about 20% slower than a plain length,
 /// so only there). O(V).
 pub(crate) fn robust_lengths(mesh: &TriMesh) -> bool {
-    !(2f64.powi(-100)..=2f64.powi(100)).contains(&mesh_core::units::length_unit(mesh))
+    !(2f64.powi(-100)..=2f64.powi(100)).contains(&mesh_kernel::units::length_unit(mesh))
 }
 
 /// Dijkstra from `seeds` (vertex, label) into an existing labelling: a vertex
@@ -151,7 +151,7 @@ pub(crate) fn propagate(
                 return; // settled (or about to be): no shorter path through v
             }
             let edge = p[w.idx()] - pv;
-            let nd = d + if robust { mesh_core::geometry::norm(edge) } else { edge.length() };
+            let nd = d + if robust { mesh_kernel::geometry::norm(edge) } else { edge.length() };
             if nd < distance[w.idx()] {
                 distance[w.idx()] = nd;
                 predecessor[w.idx()] = v;

@@ -1,6 +1,6 @@
 //! The error type of the crate.
 
-use mesh_core::{FaceId, MeshError, VertexId};
+use mesh_kernel::{FaceId, MeshError, VertexId};
 use thiserror::Error;
 
 /// Everything that can go wrong in `mesh-geodesic`.

@@ -27,8 +27,8 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::f64::consts::PI;
 
-use mesh_core::glam::DVec2;
-use mesh_core::{Connectivity, HalfedgeId, TriMesh, VertexId, VertexKind};
+use mesh_kernel::glam::DVec2;
+use mesh_kernel::{Connectivity, HalfedgeId, TriMesh, VertexId, VertexKind};
 
 use crate::error::{GeodesicError, Result};
 use crate::support::{validate_sources, HeapEntry};
@@ -60,14 +60,14 @@ const DEGENERATE: f64 = 1e-12;
 /// Papadimitriou 1987; Surazhsky et al. 2005) with the vertex-distance
 /// filter of Xin and Wang 2009. `+infinity` where no source is reachable.
 ///
-/// Needs an oriented 2-manifold ([`mesh_core::MeshError::NonManifold`]
+/// Needs an oriented 2-manifold ([`mesh_kernel::MeshError::NonManifold`]
 /// otherwise) without zero-area triangles ([`GeodesicError::Degenerate`]).
 /// Cost: about V^1.6 windows on the icospheres (measured), worst case
 /// O(V^2 log V) time; at most
 /// [`ExactOptions::max_windows`] windows, then [`GeodesicError::WorkLimit`].
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{exact_distance, ExactOptions};
 ///
 /// // A flat grid: geodesics are straight lines.
@@ -87,7 +87,7 @@ const DEGENERATE: f64 = 1e-12;
 pub fn exact_distance(mesh: &TriMesh, sources: &[VertexId], options: &ExactOptions) -> Result<Vec<f64>> {
     validate_sources(mesh, sources)?;
     // Unfoldings square lengths: work in a unit where nothing overflows.
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let conn = mesh.manifold_connectivity()?;
     let geometry = Geometry::new(&mesh)?;
     let mut state = Propagation::new(conn, &geometry, options.max_windows);

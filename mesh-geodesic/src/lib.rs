@@ -1,6 +1,6 @@
 //! Geodesic distances and paths on triangle meshes (seed section 2.6):
 //! graph distances, Fast Marching, the heat method, gradient-flow path
-//! tracing and geodesic sampling, on any [`mesh_core::TriMesh`].
+//! tracing and geodesic sampling, on any [`mesh_kernel::TriMesh`].
 //!
 //! | module | what it holds | seed / paper |
 //! |---|---|---|
@@ -11,14 +11,14 @@
 //! | [`trace`] | paths along dC/dt = -grad U from any surface point back to the sources | eq. 2.35 |
 //! | [`sampling`] | farthest-point sampling and geodesic Voronoi regions | 2.6 |
 //!
-//! Every function takes the sources as [`mesh_core::VertexId`]s and returns
+//! Every function takes the sources as [`mesh_kernel::VertexId`]s and returns
 //! one distance per vertex: 0 at the sources, `+infinity` on vertices no
 //! source reaches (other components, isolated vertices), never NaN. Input
 //! that cannot be handled is a [`GeodesicError`]; nothing panics.
 //!
 #![cfg_attr(feature = "heat", doc = "```")]
 #![cfg_attr(not(feature = "heat"), doc = "```ignore")]
-//! use mesh_core::{shapes, VertexId};
+//! use mesh_kernel::{shapes, VertexId};
 //! use mesh_geodesic::{FastMarching, FmmOptions, HeatGeodesics, HeatOptions, SurfacePoint, TraceOptions};
 //!
 //! let sphere = shapes::icosphere(4)?; // unit sphere, 2562 vertices

@@ -9,7 +9,7 @@
 //! vertices for the k-th sample), plus an O(V) scan for the next farthest
 //! vertex.
 
-use mesh_core::{TriMesh, VertexId, VertexKind};
+use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
 use crate::dijkstra::{propagate, robust_lengths, ShortestPaths};
 use crate::error::{GeodesicError, Result};
@@ -58,7 +58,7 @@ pub struct GeodesicVoronoi {
 /// O(V log V).
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{geodesic_voronoi, SamplingOptions};
 ///
 /// let sphere = shapes::icosphere(3)?;
@@ -93,7 +93,7 @@ pub fn geodesic_voronoi(mesh: &TriMesh, seeds: &[VertexId], options: &SamplingOp
 /// to find the next one, and the final march.
 ///
 /// ```
-/// use mesh_core::shapes;
+/// use mesh_kernel::shapes;
 /// use mesh_geodesic::{farthest_point_sampling, SamplingOptions};
 ///
 /// let sphere = shapes::icosphere(3)?;
@@ -119,7 +119,7 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
             validate_sources(mesh, &[s])?;
             s
         }
-        None => VertexId::new(usable.iter().position(|u| *u).ok_or(mesh_core::MeshError::Empty)?),
+        None => VertexId::new(usable.iter().position(|u| *u).ok_or(mesh_kernel::MeshError::Empty)?),
     };
     let n = mesh.vertex_count();
     let mut front = Front::new(mesh, options)?;

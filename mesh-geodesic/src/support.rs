@@ -3,7 +3,7 @@
 
 use std::cmp::Ordering;
 
-use mesh_core::{Connectivity, TriMesh, VertexId, VertexKind};
+use mesh_kernel::{Connectivity, TriMesh, VertexId, VertexKind};
 
 use crate::error::{GeodesicError, Result};
 

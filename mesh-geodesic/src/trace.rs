@@ -16,8 +16,8 @@
 //! bounded number of steps, it finishes along the shortest edge path of
 //! [`crate::dijkstra()`], so it terminates on every input.
 
-use mesh_core::glam::DVec3;
-use mesh_core::{FaceId, HalfedgeId, TriMesh, VertexId};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{FaceId, HalfedgeId, TriMesh, VertexId};
 
 use crate::dijkstra::{dijkstra, DijkstraOptions};
 use crate::error::{GeodesicError, Result};
@@ -156,7 +156,7 @@ impl Frame {
 /// sources, an invalid start, or a start not connected to any source.
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{fmm_distance, trace_path, FmmOptions, SurfacePoint, TraceOptions};
 ///
 /// let sphere = shapes::icosphere(4)?;
@@ -195,7 +195,7 @@ pub fn trace_path(
         m => m,
     };
     // Gradients divide by areas: trace in a unit where none over- or underflows.
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     if unit == 1.0 {
         return Tracer::new(&mesh, distance, sources).run(from, max_steps);
     }
@@ -513,7 +513,7 @@ mod tests {
 
     #[test]
     fn surface_points_are_validated() {
-        let mesh = mesh_core::shapes::icosphere(0).unwrap();
+        let mesh = mesh_kernel::shapes::icosphere(0).unwrap();
         assert!(SurfacePoint::new(&mesh, FaceId(0), [0.2, 0.3, 0.5]).is_ok());
         assert!(SurfacePoint::new(&mesh, FaceId(20), [0.2, 0.3, 0.5]).is_err());
         assert!(SurfacePoint::new(&mesh, FaceId(0), [0.2, 0.3, 0.6]).is_err());

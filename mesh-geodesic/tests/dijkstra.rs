@@ -3,7 +3,7 @@
 
 mod common;
 
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, DijkstraOptions, GeodesicError};
 
 /// Bellman-Ford over the edge list: the reference shortest edge paths.

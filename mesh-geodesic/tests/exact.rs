@@ -5,8 +5,8 @@
 
 mod common;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, MeshError, TriMesh, VertexId};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, MeshError, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, exact_distance, fmm_distance, ExactOptions, GeodesicError};
 use proptest::prelude::*;
 

@@ -6,7 +6,7 @@ mod common;
 
 use std::f64::consts::PI;
 
-use mesh_core::{shapes, VertexId};
+use mesh_kernel::{shapes, VertexId};
 use mesh_geodesic::{fmm_distance, FastMarching, FmmOptions, FmmUpdate, GeodesicError};
 
 fn opts(update: FmmUpdate) -> FmmOptions {
@@ -91,7 +91,7 @@ fn multiple_sources_give_the_nearest() {
     let (a, b) = (VertexId(0), VertexId(7));
     let (da, db) = (fmm.distance(&[a]).unwrap(), fmm.distance(&[b]).unwrap());
     let (both, labels) = fmm.distance_and_labels(&[a, b]).unwrap();
-    let h = mesh_core::geometry::mean_edge_length(&mesh);
+    let h = mesh_kernel::geometry::mean_edge_length(&mesh);
     for v in 0..mesh.vertex_count() {
         let nearest = da[v].min(db[v]);
         // Where the fronts collide the triangle updates mix both (the usual
@@ -179,7 +179,7 @@ fn bad_input_is_an_error() {
 fn every_data_mesh_gives_finite_distances_within_components() {
     for (name, mesh) in common::data_meshes() {
         let comp = &mesh.connectivity().components().vertex_component;
-        let h = mesh_core::geometry::mean_edge_length(&mesh);
+        let h = mesh_kernel::geometry::mean_edge_length(&mesh);
         for update in [FmmUpdate::PlaneWave, FmmUpdate::CurvedFront] {
             let d = fmm_distance(&mesh, &[VertexId(0)], &opts(update)).unwrap();
             let dj = mesh_geodesic::dijkstra(&mesh, &[VertexId(0)], &Default::default()).unwrap().distance;

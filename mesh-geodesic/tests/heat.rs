@@ -3,8 +3,8 @@
 
 mod common;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{heat_distance, GeodesicError, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
 
 fn with(laplacian: HeatLaplacian) -> HeatOptions {
@@ -77,7 +77,7 @@ fn one_factorization_answers_many_source_sets() {
     assert_eq!((a[0], b[300], ab[0], ab[300]), (0.0, 0.0, 0.0, 0.0));
     // Two sources: close to the nearer one's distance (heat smooths the
     // ridge between them, within a couple of edge lengths).
-    let h = mesh_core::geometry::mean_edge_length(&mesh);
+    let h = mesh_kernel::geometry::mean_edge_length(&mesh);
     for v in 0..mesh.vertex_count() {
         assert!((ab[v] - a[v].min(b[v])).abs() < 2.0 * h, "{v}");
     }
@@ -149,7 +149,7 @@ fn every_data_mesh_gives_finite_distances_within_components() {
         }
         // Within a few percent of fast marching on average (not across
         // zero-area triangles, where the two disagree on what the surface is).
-        if !mesh_core::clean::degenerate_faces(&mesh, 1e-12).is_empty() {
+        if !mesh_kernel::clean::degenerate_faces(&mesh, 1e-12).is_empty() {
             continue;
         }
         let fmm = mesh_geodesic::fmm_distance(&mesh, &[VertexId(0)], &Default::default()).unwrap();

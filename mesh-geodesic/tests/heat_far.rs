@@ -5,8 +5,8 @@
 //! work: max |heat - exact| <= 2% and median <= 0.5% of the largest
 //! distance, whatever the number of edge lengths spanned, and no plateau.
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{HeatDistance, HeatFarField, HeatGeodesics, HeatOptions, HeatStatus};
 
 /// Max and median of |d - truth| over the largest truth, and the fraction

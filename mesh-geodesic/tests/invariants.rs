@@ -4,7 +4,7 @@
 //! (largest deviations seen on random meshes: fast marching 0.61 h, heat
 //! method 0.73 h).
 
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, fmm_distance, FmmOptions, FmmUpdate, HeatOptions};
 use proptest::prelude::*;
 
@@ -62,7 +62,7 @@ proptest! {
     #[test]
     fn fast_marching_is_nearly_a_metric(kind in 0u8..2, seed in 1u64..1000, amp in 0.0f64..0.3, a in 0u32..127, b in 0u32..127, c in 0u32..127, plane in any::<bool>()) {
         let mesh = random_mesh(kind, seed, amp);
-        let h = mesh_core::geometry::mean_edge_length(&mesh);
+        let h = mesh_kernel::geometry::mean_edge_length(&mesh);
         let update = if plane { FmmUpdate::PlaneWave } else { FmmUpdate::CurvedFront };
         let opts = FmmOptions { update, ..Default::default() };
         let d = pairwise([VertexId(a), VertexId(b), VertexId(c)], |s| fmm_distance(&mesh, &[s], &opts).unwrap());
@@ -72,7 +72,7 @@ proptest! {
     #[test]
     fn heat_method_is_nearly_a_metric(kind in 0u8..2, seed in 1u64..1000, amp in 0.0f64..0.3, a in 0u32..127, b in 0u32..127, c in 0u32..127) {
         let mesh = random_mesh(kind, seed, amp);
-        let h = mesh_core::geometry::mean_edge_length(&mesh);
+        let h = mesh_kernel::geometry::mean_edge_length(&mesh);
         let heat = mesh_geodesic::HeatGeodesics::new(&mesh, &HeatOptions::default()).unwrap();
         let d = pairwise([VertexId(a), VertexId(b), VertexId(c)], |s| heat.distance(&[s]).unwrap());
         check(d, 1.0 * h, 1.0 * h)?;

@@ -3,8 +3,8 @@
 
 mod common;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
     dijkstra, farthest_point_sampling, fmm_distance, geodesic_voronoi, FmmOptions, GeodesicError, SamplingMetric,
     SamplingOptions,
@@ -18,7 +18,7 @@ fn metric(metric: SamplingMetric) -> SamplingOptions {
 fn voronoi_regions_hold_the_nearest_seed() {
     let mesh = shapes::torus(2.0, 0.6, 48, 16).unwrap();
     let seeds = [VertexId(0), VertexId(250), VertexId(600)];
-    let h = mesh_core::geometry::mean_edge_length(&mesh);
+    let h = mesh_kernel::geometry::mean_edge_length(&mesh);
     let single: Vec<Vec<f64>> =
         seeds.iter().map(|s| fmm_distance(&mesh, &[*s], &FmmOptions::default()).unwrap()).collect();
     let cells = geodesic_voronoi(&mesh, &seeds, &SamplingOptions::default()).unwrap();
@@ -56,7 +56,7 @@ fn incremental_sampling_matches_a_fresh_computation() {
     let fps = farthest_point_sampling(&mesh, 15, &SamplingOptions::default()).unwrap();
     let fresh = fmm_distance(&mesh, &fps.seeds, &FmmOptions::default()).unwrap();
     assert_eq!(fps.distance, fresh);
-    let h = mesh_core::geometry::mean_edge_length(&mesh);
+    let h = mesh_kernel::geometry::mean_edge_length(&mesh);
     let last = fresh.iter().cloned().fold(0.0, f64::max);
     assert!((fps.radii[14] - last).abs() < 0.5 * h, "{} vs {last}", fps.radii[14]);
 }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use mesh_core::{shapes, FaceId, TriMesh, VertexId};
+use mesh_kernel::{shapes, FaceId, TriMesh, VertexId};
 use mesh_geodesic::{
     fmm_distance, heat_distance, trace_path, FmmOptions, GeodesicError, GeodesicPath, HeatOptions, SurfacePoint,
     TraceOptions,

@@ -3,7 +3,7 @@
 //! reader changed.
 
 use glam::{DVec2, DVec3};
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::error::{IoError, Location, Result};
 
@@ -191,11 +191,11 @@ impl ReadReport {
 ///
 /// ```
 /// # use mesh_io::MeshView;
-/// # let mesh = mesh_core::TriMesh::new(vec![mesh_core::glam::DVec3::ZERO; 3], vec![])?;
+/// # let mesh = mesh_kernel::TriMesh::new(vec![mesh_kernel::glam::DVec3::ZERO; 3], vec![])?;
 /// let mean = vec![0.0; mesh.vertex_count()];
 /// let view = MeshView::new(&mesh).with_scalar("mean", &mean);
 /// assert_eq!(view.scalars.len(), 1);
-/// # Ok::<(), mesh_core::MeshError>(())
+/// # Ok::<(), mesh_kernel::MeshError>(())
 /// ```
 ///
 /// Each writer keeps what its format can hold (see the crate's format table)

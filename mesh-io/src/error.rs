@@ -4,7 +4,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use mesh_core::MeshError;
+use mesh_kernel::MeshError;
 use thiserror::Error;
 
 use crate::format::Format;
@@ -138,7 +138,7 @@ pub enum IoError {
         /// The feature.
         what: String,
     },
-    /// The positions and faces read do not make a valid [`mesh_core::TriMesh`].
+    /// The positions and faces read do not make a valid [`mesh_kernel::TriMesh`].
     #[error("{at}: {source}")]
     Mesh {
         /// Where.

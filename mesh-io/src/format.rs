@@ -62,8 +62,8 @@ impl Format {
     /// modelling tools and of scan repositories such as Stanford's), +Z for
     /// STL (3D printing). A file cannot say otherwise, so this is a default
     /// for viewers, never a fact about the data.
-    pub fn conventional_up(self) -> mesh_core::glam::DVec3 {
-        use mesh_core::glam::DVec3;
+    pub fn conventional_up(self) -> mesh_kernel::glam::DVec3 {
+        use mesh_kernel::glam::DVec3;
         match self {
             Format::Stl => DVec3::Z,
             Format::Obj | Format::Off | Format::Ply | Format::Gltf | Format::Glb => DVec3::Y,

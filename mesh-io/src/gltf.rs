@@ -830,7 +830,7 @@ impl Doc {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::TriMesh;
+    use mesh_kernel::TriMesh;
 
     fn quad() -> MeshData {
         let p = vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];

@@ -1,7 +1,7 @@
 //! Reading and writing triangle meshes: OBJ, OFF, PLY (ascii and binary),
 //! STL (ascii and binary) and glTF 2.0 (`.gltf`, `.glb`), with the normals,
 //! texture coordinates, colours and named per-vertex scalars each format can
-//! carry, into the [`mesh_core::TriMesh`] of the mesh workspace.
+//! carry, into the [`mesh_kernel::TriMesh`] of the mesh workspace.
 //!
 //! - [`read`] / [`write()`]: by file name (format from the extension, content
 //!   checked against it, writes atomic); [`read_from`] / [`write_to`] for
@@ -22,7 +22,7 @@
 //! - [`Format`]: extensions and content sniffing.
 //!
 //! ```
-//! use mesh_core::{TriMesh, glam::DVec3};
+//! use mesh_kernel::{TriMesh, glam::DVec3};
 //! use mesh_io::{MeshView, WriteOptions};
 //!
 //! let mesh = TriMesh::new(

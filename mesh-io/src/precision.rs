@@ -178,7 +178,7 @@ fn scale<const N: usize>(values: impl Iterator<Item = [f64; N]>, kind: Scale) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::TriMesh;
+    use mesh_kernel::TriMesh;
 
     fn triangle(scale: f64) -> TriMesh {
         TriMesh::new(vec![DVec3::ZERO, DVec3::X * scale, DVec3::Y * scale], vec![[0, 1, 2]]).unwrap()

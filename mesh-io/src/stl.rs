@@ -1,7 +1,7 @@
 //! STL (stereolithography), ascii and binary.
 //!
 //! STL stores loose triangles, so the reader welds corners with identical
-//! positions ([`mesh_core::clean::weld_vertices`], exact by default) and drops
+//! positions ([`mesh_kernel::clean::weld_vertices`], exact by default) and drops
 //! (and counts) the faces that collapse. Binary files are recognised by their
 //! size (`84 + 50 n` bytes for `n` triangles), even when their header starts
 //! with `solid`; trailing bytes after the last triangle are ignored. Facet
@@ -48,7 +48,7 @@ fn triangle_count(bytes: &[u8]) -> Option<u32> {
 /// `IoError::Truncated` for a binary STL shorter than its triangle count says, or an ascii STL without
 /// `endfacet`/`endsolid`; `IoError::Syntax` for an ascii keyword or number that is not STL, or a facet
 /// without 3 vertices; `IoError::NonFinite` for a NaN or infinite corner; `IoError::Mesh` for a negative
-/// `weld_tolerance` (mesh-core's welding refuses it) or faces that do not make a valid `TriMesh`.
+/// `weld_tolerance` (mesh-kernel's welding refuses it) or faces that do not make a valid `TriMesh`.
 pub fn read(bytes: &[u8], weld_tolerance: Option<f64>) -> Result<MeshData> {
     let ascii =
         !is_binary(bytes) && bytes.trim_ascii_start().get(..5).is_some_and(|w| w.eq_ignore_ascii_case(b"solid"));
@@ -58,7 +58,7 @@ pub fn read(bytes: &[u8], weld_tolerance: Option<f64>) -> Result<MeshData> {
     let Some(tolerance) = weld_tolerance else {
         return Ok(MeshData { report, ..MeshData::new(tri_mesh(corners, faces, at)?) });
     };
-    let (positions, welded, merged) = mesh_core::clean::weld_vertices(&corners, &faces, tolerance)
+    let (positions, welded, merged) = mesh_kernel::clean::weld_vertices(&corners, &faces, tolerance)
         .map_err(|source| IoError::Mesh { at: at.clone(), source })?;
     report.vertices_welded = merged;
     let mut faces = Vec::with_capacity(welded.len());
@@ -163,7 +163,7 @@ pub fn write<W: Write>(out: W, view: &MeshView<'_>, encoding: StlEncoding) -> Re
 }
 
 fn unit_normal(tri: [DVec3; 3]) -> DVec3 {
-    mesh_core::geometry::triangle_normal(tri)
+    mesh_kernel::geometry::triangle_normal(tri)
 }
 
 fn write_binary<W: Write>(mut out: W, view: &MeshView<'_>) -> Result<()> {

@@ -151,7 +151,7 @@ fn gltf_with_external_buffer_next_to_it() {
 
 #[test]
 fn empty_and_faceless_meshes() {
-    let empty = MeshData::new(mesh_core::TriMesh::new(vec![], vec![]).unwrap());
+    let empty = MeshData::new(mesh_kernel::TriMesh::new(vec![], vec![]).unwrap());
     for format in Format::ALL {
         let back = round_trip(&empty, &format!("e.{}", format.extension()), &WriteOptions::default());
         assert_eq!(back.mesh.vertex_count(), 0, "{format}");

@@ -2,7 +2,7 @@
 //! eq. 2.1-2.2 of the seed (section 2.2.1 of `digital-shape-processing.md`),
 //! NURBS surfaces (eq. 2.3-2.4) with exact derivatives, fundamental forms and
 //! curvatures (section 2.5, eq. 2.19-2.24), exact shapes, and tessellation to
-//! a watertight [`mesh_core::TriMesh`] carrying the exact curvature of every
+//! a watertight [`mesh_kernel::TriMesh`] carrying the exact curvature of every
 //! vertex.
 //!
 //! - [`knots`]: validated knot vectors, clamped and uniform constructors, span search.

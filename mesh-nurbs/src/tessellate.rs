@@ -18,7 +18,7 @@
 //!   occurrence (smallest `v`, then smallest `u`).
 
 use glam::{DVec2, DVec3};
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::error::{NurbsError, Result};
 use crate::frame::SurfaceFrame;

@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{
     shapes, tessellate, tessellate_adaptive, AdaptiveOptions, GridOptions, NurbsSurface, SurfaceFrame, Tessellation,
@@ -56,7 +56,7 @@ fn sphere_is_a_closed_genus_zero_surface() {
         assert_eq!(poles.len(), 2);
         for &v in &poles {
             assert!((t.normal[v] - t.mesh.positions()[v] / r).length() < 1e-12);
-            assert_eq!(c.valence(mesh_core::VertexId::new(v)), nu);
+            assert_eq!(c.valence(mesh_kernel::VertexId::new(v)), nu);
         }
     }
 }

@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec2;
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_param::{
     bijectivity, boundary, cut_to_disk, distortion, lscm, require_disk, DegeneratePolicy, FixedBoundarySolver,
     Harmonic, LscmOptions, MeanValue, Spacing, Uniform, Weights,

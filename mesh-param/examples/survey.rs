@@ -2,7 +2,7 @@
 //! `cargo run -p mesh-param --release --example survey -- FILE.off`.
 
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use mesh_param::{parameterize_cut, Method, Options};
 
 fn read_off(path: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {

@@ -8,7 +8,7 @@
 //! (eq. 2.15 weights) with one vertex pinned, factored once.
 
 use glam::{DMat2, DVec2};
-use mesh_core::{TriMesh, VertexId, VertexKind};
+use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
 use crate::dirichlet::dirichlet_solver;
 use crate::error::{ParamError, Result};
@@ -20,7 +20,7 @@ use crate::weights::{Harmonic, LocalTriangle, WeightContext};
 /// isometric flattening, ready for any number of iterations from any start.
 #[derive(Debug, Clone)]
 pub struct Arap {
-    solver: mesh_core::solver::DirichletSolver,
+    solver: mesh_kernel::solver::DirichletSolver,
     /// Per face: flattened corners (x_0 = 0) and the opposite cotangents of
     /// the half-edges 0 -> 1, 1 -> 2, 2 -> 0.
     flat: Vec<([DVec2; 3], [f64; 3])>,
@@ -47,7 +47,7 @@ impl Arap {
         let flat = mesh
             .face_ids()
             .map(|f| {
-                let t = ctx.triangle(mesh_core::HalfedgeId::of_corner(f, 0));
+                let t = ctx.triangle(mesh_kernel::HalfedgeId::of_corner(f, 0));
                 (flatten(&t), [t.cot(2), t.cot(0), t.cot(1)])
             })
             .collect();
@@ -84,7 +84,7 @@ impl Arap {
     pub fn solve(&self, start: &[DVec2], iterations: usize) -> Result<Vec<DVec2>> {
         let n = start.len();
         if n != self.vertex_count {
-            return Err(mesh_core::MeshError::Dimension(format!(
+            return Err(mesh_kernel::MeshError::Dimension(format!(
                 "{n} start positions for {} vertices",
                 self.vertex_count
             ))
@@ -162,7 +162,7 @@ fn flat_of(p: [glam::DVec3; 3]) -> [DVec2; 3] {
 mod tests {
     use super::*;
     use glam::DVec3;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn flattening_is_isometric() {

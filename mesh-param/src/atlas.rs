@@ -19,7 +19,7 @@
 //! fail.
 
 use glam::{DVec2, DVec3};
-use mesh_core::{geometry, FaceId, SubMesh, TriMesh, VertexId};
+use mesh_kernel::{geometry, FaceId, SubMesh, TriMesh, VertexId};
 
 use crate::boundary::{BoundaryMap, Spacing};
 use crate::cut::cut_to_disk;
@@ -96,7 +96,7 @@ impl std::fmt::Display for ChartLayout {
 #[derive(Debug, Clone)]
 pub struct Chart {
     /// The connected component of the input it belongs to (numbered as in
-    /// `mesh_core::Connectivity::components`).
+    /// `mesh_kernel::Connectivity::components`).
     pub component: usize,
     /// Topology of the piece before cutting.
     pub topology: Topology,
@@ -187,7 +187,7 @@ impl Atlas {
 
 /// Builds a texture atlas of `mesh` (see the module documentation). Needs an
 /// oriented manifold (non-manifold input is the wrapped
-/// `mesh_core::MeshError::NonManifold`; `mesh_core::clean` repairs it).
+/// `mesh_kernel::MeshError::NonManifold`; `mesh_kernel::clean` repairs it).
 /// Cost: per chart, that of [`crate::cut_to_disk`] and of the method
 /// (one sparse factorization), plus O(F) for the distortion and the
 /// packing's O(c^2) for c charts (about 20 trial packings).
@@ -196,13 +196,13 @@ impl Atlas {
 /// use mesh_param::{atlas, AtlasOptions, Method};
 ///
 /// // Two components: a torus (cut to a disk) and a sphere.
-/// let torus = mesh_core::shapes::torus(2.0, 0.5, 24, 12)?;
-/// let sphere = mesh_core::shapes::icosphere(2)?;
+/// let torus = mesh_kernel::shapes::torus(2.0, 0.5, 24, 12)?;
+/// let sphere = mesh_kernel::shapes::icosphere(2)?;
 /// let (mut p, mut f) = torus.into_parts();
 /// let n = p.len() as u32;
 /// p.extend(sphere.positions().iter().map(|q| *q + glam::DVec3::new(5.0, 0.0, 0.0)));
 /// f.extend(sphere.faces().iter().map(|t| t.map(|v| v + n)));
-/// let mesh = mesh_core::TriMesh::new(p, f)?;
+/// let mesh = mesh_kernel::TriMesh::new(p, f)?;
 ///
 /// let a = atlas(&mesh, &AtlasOptions { method: Method::Tutte, ..Default::default() })?;
 /// assert_eq!(a.charts.len(), 2);
@@ -495,8 +495,8 @@ fn faces_apart(mesh: &TriMesh, fallback_length: f64) -> Result<(TriMesh, Vec<Ver
 fn flat_triangle(p: [DVec3; 3], fallback_length: f64) -> [DVec2; 3] {
     let (a, b) = (p[1] - p[0], p[2] - p[0]);
     let la = a.length();
-    let cross = mesh_core::geometry::norm(a.cross(b));
-    if mesh_core::clean::is_degenerate_triangle(p, crate::weights::DEGENERATE_TOLERANCE) || la == 0.0 {
+    let cross = mesh_kernel::geometry::norm(a.cross(b));
+    if mesh_kernel::clean::is_degenerate_triangle(p, crate::weights::DEGENERATE_TOLERANCE) || la == 0.0 {
         let mean = (la + b.length() + (p[2] - p[1]).length()) / 3.0;
         let l = if mean > 0.0 { mean } else { fallback_length.max(f64::MIN_POSITIVE) };
         return [DVec2::ZERO, DVec2::new(l, 0.0), DVec2::new(0.0, l)];
@@ -507,7 +507,7 @@ fn flat_triangle(p: [DVec3; 3], fallback_length: f64) -> [DVec2; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     /// Places copies of `parts` side by side along x as one mesh.
     fn side_by_side(parts: &[TriMesh]) -> TriMesh {

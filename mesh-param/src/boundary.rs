@@ -5,7 +5,7 @@
 //! mean-value maps onto them are bijective.
 
 use glam::{DVec2, DVec3};
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::{TriMesh, VertexId};
 
 use crate::error::{ParamError, Result};
 
@@ -127,7 +127,7 @@ pub fn square(mesh: &TriMesh, boundary: &[VertexId]) -> Result<Vec<DVec2>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     fn loop_of(m: &TriMesh) -> Vec<VertexId> {
         m.connectivity().boundary_loops().unwrap()[0].vertices.clone()

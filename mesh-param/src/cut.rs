@@ -14,8 +14,8 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use mesh_core::union_find::UnionFind;
-use mesh_core::{Connectivity, EdgeId, HalfedgeId, TriMesh, VertexId, VertexKind};
+use mesh_kernel::union_find::UnionFind;
+use mesh_kernel::{Connectivity, EdgeId, HalfedgeId, TriMesh, VertexId, VertexKind};
 
 use crate::error::{ParamError, Result};
 use crate::topology::{require_disk, Topology};
@@ -256,7 +256,7 @@ fn split_along(mesh: &TriMesh, conn: &Connectivity, cut: &[bool]) -> (Vec<glam::
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     fn check(mesh: &TriMesh) -> CutMesh {
         let c = cut_to_disk(mesh).unwrap();

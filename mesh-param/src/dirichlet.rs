@@ -1,9 +1,9 @@
 //! The constrained solves of this crate: a thin front for
-//! [`mesh_core::solver::DirichletSolver`], which cuts the free block out of
+//! [`mesh_kernel::solver::DirichletSolver`], which cuts the free block out of
 //! the CSR matrix in O(nnz) and solves u and v (or all systems) together.
 
-use mesh_core::solver::{DirichletSolver, Factorization};
-use mesh_core::sprs::CsMat;
+use mesh_kernel::solver::{DirichletSolver, Factorization};
+use mesh_kernel::sprs::CsMat;
 
 use crate::error::Result;
 

@@ -11,7 +11,7 @@
 //! with equality iff the map is conformal.
 
 use glam::{DVec2, DVec3};
-use mesh_core::{MeshError, TriMesh};
+use mesh_kernel::{MeshError, TriMesh};
 
 use crate::bijectivity::boundary_is_simple;
 use crate::error::Result;
@@ -101,10 +101,10 @@ pub fn face_distortion(p: [DVec3; 3], q: [DVec2; 3]) -> FaceDistortion {
     let (a, b) = (p[1] - p[0], p[2] - p[0]);
     let (d1, d2) = (q[1] - q[0], q[2] - q[0]);
     let cross = a.cross(b);
-    let surface_area = 0.5 * mesh_core::geometry::norm(cross);
+    let surface_area = 0.5 * mesh_kernel::geometry::norm(cross);
     let det_q = d1.perp_dot(d2);
     let uv_signed_area = 0.5 * det_q;
-    let degenerate = mesh_core::clean::is_degenerate_triangle(p, DEGENERATE_TOLERANCE);
+    let degenerate = mesh_kernel::clean::is_degenerate_triangle(p, DEGENERATE_TOLERANCE);
     if uv_is_collapsed(q, det_q) {
         let inf = f64::INFINITY;
         return FaceDistortion {
@@ -152,8 +152,8 @@ fn uv_is_collapsed(q: [DVec2; 3], det_q: f64) -> bool {
 /// An orthonormal basis of the plane of a face with edge `a` and normal
 /// `cross`; any basis of the plane containing `a` for degenerate faces.
 fn frame(a: DVec3, cross: DVec3) -> (DVec3, DVec3) {
-    let e1 = mesh_core::geometry::unit_vector(a);
-    let n = mesh_core::geometry::unit_vector(cross);
+    let e1 = mesh_kernel::geometry::unit_vector(a);
+    let n = mesh_kernel::geometry::unit_vector(cross);
     if e1 == DVec3::ZERO {
         return (DVec3::X, DVec3::Y);
     }
@@ -194,12 +194,12 @@ pub fn distortion(mesh: &TriMesh, uv: &[DVec2]) -> Result<DistortionReport> {
     let conn = mesh.manifold_connectivity()?;
     // Measured on the mesh in a unit where no area over- or underflows; the
     // ratios do not depend on it, lengths and areas carry it back.
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mut faces: Vec<FaceDistortion> = mesh
         .faces()
         .iter()
         .enumerate()
-        .map(|(f, t)| face_distortion(mesh.triangle(mesh_core::FaceId::new(f)), t.map(|v| uv[v as usize])))
+        .map(|(f, t)| face_distortion(mesh.triangle(mesh_kernel::FaceId::new(f)), t.map(|v| uv[v as usize])))
         .collect();
     let loops: Vec<Vec<DVec2>> =
         conn.boundary_loops()?.iter().map(|l| l.vertices.iter().map(|v| uv[v.idx()]).collect()).collect();

@@ -1,6 +1,6 @@
 //! The error type of the crate.
 
-use mesh_core::{FaceId, MeshError};
+use mesh_kernel::{FaceId, MeshError};
 use thiserror::Error;
 
 /// Everything that can go wrong while parameterizing.

@@ -3,10 +3,10 @@
 //! constrained vertices, factor once, and solve for u and v.
 
 use glam::DVec2;
-use mesh_core::operators::EdgePattern;
-use mesh_core::solver::Factorization;
-use mesh_core::sprs::CsMat;
-use mesh_core::{FaceId, HalfedgeId, MeshError, TriMesh, VertexId, VertexKind};
+use mesh_kernel::operators::EdgePattern;
+use mesh_kernel::solver::Factorization;
+use mesh_kernel::sprs::CsMat;
+use mesh_kernel::{FaceId, HalfedgeId, MeshError, TriMesh, VertexId, VertexKind};
 
 use crate::dirichlet::dirichlet_solver;
 use crate::error::{ParamError, Result};
@@ -62,12 +62,12 @@ pub fn weight_matrix<W: Weights + ?Sized>(ctx: &WeightContext<'_>, weights: &W) 
 ///
 /// Symmetric weights are factored by sparse Cholesky (falling back to LU if
 /// the matrix is not positive definite), asymmetric ones by sparse LU, both
-/// from `mesh_core::solver` (on the free block cut out in O(nnz)). Unreferenced
+/// from `mesh_kernel::solver` (on the free block cut out in O(nnz)). Unreferenced
 /// vertices are fixed at the centroid of the constraints. Cost: assembly
 /// O(V + E) plus one sparse factorization of the free block.
 #[derive(Debug, Clone)]
 pub struct FixedBoundarySolver {
-    solver: mesh_core::solver::DirichletSolver,
+    solver: mesh_kernel::solver::DirichletSolver,
     /// For each slot of `solver.fixed()`: index into the caller's constraints,
     /// or `None` for an unreferenced vertex.
     slot_source: Vec<Option<usize>>,
@@ -170,7 +170,7 @@ impl FixedBoundarySolver {
 mod tests {
     use super::*;
     use crate::weights::{Authalic, Harmonic, MeanValue, Uniform};
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     fn boundary(m: &TriMesh) -> Vec<VertexId> {
         m.connectivity().boundary_loops().unwrap()[0].vertices.clone()
@@ -187,9 +187,9 @@ mod tests {
                 assert!(s.abs() < 1e-9, "{s}");
             }
         }
-        // Harmonic equals twice mesh-core's cotangent Laplacian.
+        // Harmonic equals twice mesh-kernel's cotangent Laplacian.
         let a = weight_matrix(&ctx, &Harmonic);
-        let l = mesh_core::operators::cotan_laplacian(&m);
+        let l = mesh_kernel::operators::cotan_laplacian(&m);
         let d = &a - &l.map(|x| 2.0 * x);
         assert!(d.data().iter().all(|x| x.abs() < 1e-12));
     }

@@ -23,7 +23,7 @@
 //! ```
 //! use mesh_param::{parameterize, BoundaryMap, Method, Options, Spacing};
 //!
-//! let mut mesh = mesh_core::shapes::disk(10, 7)?;      // 331 vertices, unit disk
+//! let mut mesh = mesh_kernel::shapes::disk(10, 7)?;      // 331 vertices, unit disk
 //! for p in mesh.positions_mut() {
 //!     p.z = 0.5 * (p.x * p.x - p.y * p.y);             // bend it into a saddle
 //! }

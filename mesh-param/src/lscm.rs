@@ -5,8 +5,8 @@
 //! exactly for conformal maps (eq. 2.10-2.11 with equality).
 
 use glam::DVec2;
-use mesh_core::sprs::CsMat;
-use mesh_core::{FaceId, TriMesh, VertexId, VertexKind};
+use mesh_kernel::sprs::CsMat;
+use mesh_kernel::{FaceId, TriMesh, VertexId, VertexKind};
 
 use crate::dirichlet::dirichlet_solver;
 use crate::error::{ParamError, Result};
@@ -200,7 +200,7 @@ pub fn normalize_to_unit_box(uv: &mut [DVec2]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn energy_matrix_is_symmetric_with_similarities_in_its_kernel() {
@@ -217,7 +217,7 @@ mod tests {
         let n = m.vertex_count();
         for (du, dv) in [(1.0, 0.0), (0.0, 1.0)] {
             let x: Vec<f64> = (0..2 * n).map(|k| if k < n { du } else { dv }).collect();
-            let qx = &q * &mesh_core::sprs::CsVec::new(2 * n, (0..2 * n).collect(), x);
+            let qx = &q * &mesh_kernel::sprs::CsVec::new(2 * n, (0..2 * n).collect(), x);
             assert!(qx.data().iter().all(|y| y.abs() < 1e-12));
         }
     }

@@ -3,7 +3,7 @@
 //! manifold into a disk first and gives UVs per corner.
 
 use glam::DVec2;
-use mesh_core::{FaceId, TriMesh, VertexId};
+use mesh_kernel::{FaceId, TriMesh, VertexId};
 
 use crate::arap::Arap;
 use crate::boundary::{self, BoundaryMap};
@@ -159,7 +159,7 @@ pub struct Parameterization {
 /// ```
 /// use mesh_param::{parameterize, Method, Options};
 ///
-/// let mesh = mesh_core::shapes::disk(8, 1)?;
+/// let mesh = mesh_kernel::shapes::disk(8, 1)?;
 /// let p = parameterize(&mesh, &Options { method: Method::Tutte, ..Default::default() })?;
 /// assert!(p.report.summary.bijective);
 /// # Ok::<(), mesh_param::ParamError>(())
@@ -184,7 +184,7 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>,
     let boundary = require_disk(mesh)?.vertices.clone();
     // The weights' intermediates reach degree four in the coordinates: solve
     // in a unit where they cannot over- or underflow.
-    let (mesh, unit) = mesh_core::units::normalized(mesh);
+    let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mesh = mesh.as_ref();
     let mut in_mesh_units = false;
     let (mut uv, degenerate_faces) = match options.method {

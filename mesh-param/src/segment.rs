@@ -16,8 +16,8 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use glam::DVec3;
-use mesh_core::union_find::UnionFind;
-use mesh_core::{Connectivity, FaceId, HalfedgeId, SubMesh, TriMesh, VertexId};
+use mesh_kernel::union_find::UnionFind;
+use mesh_kernel::{Connectivity, FaceId, HalfedgeId, SubMesh, TriMesh, VertexId};
 
 use crate::error::{ParamError, Result};
 
@@ -190,7 +190,7 @@ impl Dual {
 pub fn chart_pieces(mesh: &TriMesh, labels: &[u32], count: usize) -> Result<Vec<SubMesh>> {
     let conn = mesh.manifold_connectivity()?;
     if labels.len() != mesh.face_count() || labels.iter().any(|&l| l as usize >= count) {
-        return Err(mesh_core::MeshError::Dimension(format!(
+        return Err(mesh_kernel::MeshError::Dimension(format!(
             "{} labels below {count} for {} faces",
             labels.len(),
             mesh.face_count()
@@ -242,7 +242,7 @@ type Piece = (Vec<FaceId>, Vec<VertexId>, Vec<[u32; 3]>);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn components_are_the_default_charts() {

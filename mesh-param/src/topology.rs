@@ -2,7 +2,7 @@
 //! topological disk (one connected component, one boundary loop, Euler
 //! characteristic chi = 1, eq. 2.6-2.7).
 
-use mesh_core::{BoundaryLoop, TriMesh};
+use mesh_kernel::{BoundaryLoop, TriMesh};
 
 use crate::error::{ParamError, Result};
 
@@ -20,7 +20,7 @@ pub struct Topology {
 }
 
 impl Topology {
-    /// Topology of `mesh`. Fails with [`mesh_core::MeshError::NonManifold`]
+    /// Topology of `mesh`. Fails with [`mesh_kernel::MeshError::NonManifold`]
     /// (wrapped) on non-manifold input. O(V + F), cached by the mesh.
     ///
     /// # Errors
@@ -74,7 +74,7 @@ pub fn require_disk(mesh: &TriMesh) -> Result<&BoundaryLoop> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn disk_is_a_disk() {

@@ -23,11 +23,11 @@
 //! [`crate::DegeneratePolicy`].
 
 use glam::DVec3;
-use mesh_core::{Connectivity, FaceId, HalfedgeId, TriMesh};
+use mesh_kernel::{Connectivity, FaceId, HalfedgeId, TriMesh};
 
 /// Relative area below which a face counts as degenerate: twice its area is
 /// at most this times its longest edge squared (as in
-/// `mesh_core::clean::is_degenerate_triangle`).
+/// `mesh_kernel::clean::is_degenerate_triangle`).
 pub const DEGENERATE_TOLERANCE: f64 = 1e-12;
 
 /// What a weight term may know about its edge besides the face.
@@ -74,7 +74,7 @@ impl LocalTriangle {
         Self {
             len: [eij.length(), ejk.length(), eki.length()],
             dot: [-eki.dot(eij), -eij.dot(ejk), -ejk.dot(eki)],
-            double_area: mesh_core::geometry::norm(eij.cross(-eki)),
+            double_area: mesh_kernel::geometry::norm(eij.cross(-eki)),
         }
     }
 
@@ -131,10 +131,10 @@ impl<'a> WeightContext<'a> {
         let conn = mesh.connectivity();
         let is_degenerate: Vec<bool> = mesh
             .face_ids()
-            .map(|f| mesh_core::clean::is_degenerate_triangle(mesh.triangle(f), DEGENERATE_TOLERANCE))
+            .map(|f| mesh_kernel::clean::is_degenerate_triangle(mesh.triangle(f), DEGENERATE_TOLERANCE))
             .collect();
         let degenerate = (0..is_degenerate.len()).filter(|&f| is_degenerate[f]).map(FaceId::new).collect();
-        let mean_edge_length = mesh_core::geometry::mean_edge_length(mesh);
+        let mean_edge_length = mesh_kernel::geometry::mean_edge_length(mesh);
         Self { mesh, conn, degenerate, is_degenerate, mean_edge_length }
     }
 
@@ -302,7 +302,7 @@ mod tests {
     fn local_triangle_matches_trigonometry() {
         let t = LocalTriangle::new(DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.5, 1.5, 0.3));
         let (pi, pj, pk) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.5, 1.5, 0.3));
-        let angles = mesh_core::geometry::triangle_angles([pi, pj, pk]);
+        let angles = mesh_kernel::geometry::triangle_angles([pi, pj, pk]);
         for c in 0..3 {
             assert!((t.cot(c) - 1.0 / angles[c].tan()).abs() < 1e-14);
             assert!((t.tan_half(c) - (angles[c] / 2.0).tan()).abs() < 1e-14);

@@ -5,7 +5,7 @@
 mod common;
 
 use glam::{DVec2, DVec3};
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options};
 
 const FIXED_METHODS: [Method; 5] =

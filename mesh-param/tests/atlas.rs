@@ -7,7 +7,7 @@
 mod common;
 
 use glam::{DVec2, DVec3};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_param::{atlas, Atlas, AtlasOptions, Method, UvRect};
 use proptest::prelude::*;
 

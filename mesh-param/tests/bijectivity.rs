@@ -5,11 +5,11 @@
 mod common;
 
 use glam::DVec3;
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options, ParamError, Spacing};
 use proptest::prelude::*;
 
-fn run(mesh: &mesh_core::TriMesh, method: Method, boundary: BoundaryMap) -> mesh_param::DistortionSummary {
+fn run(mesh: &mesh_kernel::TriMesh, method: Method, boundary: BoundaryMap) -> mesh_param::DistortionSummary {
     parameterize(mesh, &Options { method, boundary, ..Default::default() }).unwrap().report.summary
 }
 
@@ -65,7 +65,7 @@ fn data_non_disks_are_refused_then_cut() {
 }
 
 /// A disk with jittered interior vertices and a random height field.
-fn perturbed_disk(rings: usize, seed: u64, height: f64, waves: f64) -> mesh_core::TriMesh {
+fn perturbed_disk(rings: usize, seed: u64, height: f64, waves: f64) -> mesh_kernel::TriMesh {
     let mut m = shapes::disk(rings, seed).unwrap();
     for p in m.positions_mut() {
         p.z = height * ((waves * p.x).sin() * (waves * p.y + seed as f64).cos());

@@ -4,7 +4,7 @@
 mod common;
 
 use glam::{DVec2, DVec3};
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_param::{
     cut_to_disk, parameterize, parameterize_cut, BoundaryMap, DegeneratePolicy, Method, Options, ParamError,
 };

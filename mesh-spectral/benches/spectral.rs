@@ -16,8 +16,8 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use mesh_core::operators::{self, MassKind};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::operators::{self, MassKind};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{compress, eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
 
 fn group<'a>(c: &'a mut Criterion, name: &str) -> criterion::BenchmarkGroup<'a, criterion::measurement::WallTime> {

@@ -15,15 +15,15 @@
 //! and `PREFIX_M.txt` (the mass diagonal) so that scipy solves the
 //! identical problem.
 //!
-//! Shapes are those of `mesh_core::shapes::by_name` (`icosphere 6` is
+//! Shapes are those of `mesh_kernel::shapes::by_name` (`icosphere 6` is
 //! 40,962 vertices, `torus 158` 99,856, `grid 316` 100,489).
 
 use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use mesh_core::operators::mass::diagonal;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::operators::mass::diagonal;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{eigenpairs, pencil, ComponentSelection, LaplacianKind, LumpedMass, Options};
 
 fn main() -> ExitCode {

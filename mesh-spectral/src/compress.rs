@@ -9,7 +9,7 @@
 
 use faer::{Accum, Mat};
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::error::{Result, SpectralError};
 use crate::harmonics::ManifoldHarmonics;
@@ -83,17 +83,17 @@ fn curve(
     let n = p.len();
     let pm = Mat::from_fn(n, 3, |i, j| p[i][j]);
     let c = harmonics.forward_columns(pm.as_ref())?;
-    let diagonal = mesh_core::geometry::bounding_box(mesh).map_or(0.0, |b| b.diagonal());
+    let diagonal = mesh_kernel::geometry::bounding_box(mesh).map_or(0.0, |b| b.diagonal());
     // Errors are measured on positions and masses divided by powers of two
     // near their sizes (mass times squared distance is of degree four), and
     // reported relative to the diagonal.
-    let unit = mesh_core::units::length_unit(mesh);
+    let unit = mesh_kernel::units::length_unit(mesh);
     let scale = if diagonal > 0.0 { unit / diagonal } else { 1.0 };
     let mut excluded = vec![false; n];
     for &v in &harmonics.eigenpairs().excluded {
         excluded[v] = true;
     }
-    let mass_unit = mesh_core::units::unit_of(harmonics.mass().iter().copied());
+    let mass_unit = mesh_kernel::units::unit_of(harmonics.mass().iter().copied());
     let mass: Vec<f64> = harmonics.mass().iter().map(|m| m / mass_unit).collect();
     let total_mass: f64 = mass.iter().sum();
     let counted = excluded.iter().filter(|e| !**e).count().max(1) as f64;

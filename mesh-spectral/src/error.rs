@@ -1,13 +1,13 @@
 //! The error type of the crate.
 
-use mesh_core::MeshError;
+use mesh_kernel::MeshError;
 use thiserror::Error;
 
 /// Everything that can go wrong in `mesh-spectral`.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum SpectralError {
-    /// An error from `mesh-core` (invalid mesh, factorization failure, ...).
+    /// An error from `mesh-kernel` (invalid mesh, factorization failure, ...).
     #[error(transparent)]
     Mesh(#[from] MeshError),
     /// An option or argument is out of its valid range.

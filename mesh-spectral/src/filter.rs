@@ -14,7 +14,7 @@
 
 use faer::{Accum, Mat};
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 use crate::eigen::tall;
 use crate::error::{Result, SpectralError};

@@ -13,7 +13,7 @@
 
 use faer::{Accum, Mat, MatRef};
 use glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use sprs::CsMat;
 
 use crate::eigen::{eigenpairs, tall, ComponentSelection, Eigenpairs, Options};
@@ -73,7 +73,7 @@ impl ManifoldHarmonics {
     fn solve(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> Result<Self> {
         // Assembled in a unit where no area over- or underflows; the masses
         // carry the unit squared back (and the eigenpairs follow them).
-        let (mesh, unit) = mesh_core::units::normalized(mesh);
+        let (mesh, unit) = mesh_kernel::units::normalized(mesh);
         let p = pencil(&mesh, options.laplacian, options.mass)?;
         let mass: Vec<f64> = p.mass.iter().map(|m| m * unit * unit).collect();
         if mass.iter().zip(&p.mass).any(|(m, inner)| !m.is_finite() || (*m == 0.0 && *inner > 0.0)) {
@@ -85,7 +85,7 @@ impl ManifoldHarmonics {
                 ),
             });
         }
-        let m = mesh_core::operators::mass::diagonal(mass.clone());
+        let m = mesh_kernel::operators::mass::diagonal(mass.clone());
         let pairs = eigenpairs(&p.laplacian, &m, k, &options.eigen)?;
         Ok(Self { pairs, mass, info: Some(p.info) })
     }
@@ -246,8 +246,8 @@ impl ManifoldHarmonics {
         // M f carries the unit of length cubed for positions: form it from
         // the mass and values divided by powers of two near their sizes, and
         // bring the factors back one at a time.
-        let mass_unit = mesh_core::units::unit_of(self.mass.iter().copied());
-        let value_unit = mesh_core::units::unit_of((0..f.ncols()).flat_map(|j| f.col(j).iter().copied()));
+        let mass_unit = mesh_kernel::units::unit_of(self.mass.iter().copied());
+        let value_unit = mesh_kernel::units::unit_of((0..f.ncols()).flat_map(|j| f.col(j).iter().copied()));
         let mf = Mat::from_fn(f.nrows(), f.ncols(), |i, j| (self.mass[i] / mass_unit) * (f[(i, j)] / value_unit));
         let mut c = Mat::zeros(self.len(), f.ncols());
         tall::gram(c.as_mut(), self.pairs.vectors(), mf.as_ref());

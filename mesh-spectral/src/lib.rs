@@ -14,7 +14,7 @@
 //! | [`hks`] | [`heat_kernel_signature`] | Sun, Ovsjanikov and Guibas 2009 |
 //!
 //! ```
-//! use mesh_core::{operators, shapes};
+//! use mesh_kernel::{operators, shapes};
 //! use mesh_spectral::{eigenpairs, Options};
 //!
 //! // Unit sphere: eigenvalues l (l + 1), each repeated 2 l + 1 times.

@@ -5,10 +5,10 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use mesh_core::clean::degenerate_faces;
-use mesh_core::operators::laplacian::DEGENERATE_TOLERANCE;
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_core::TriMesh;
+use mesh_kernel::clean::degenerate_faces;
+use mesh_kernel::operators::laplacian::DEGENERATE_TOLERANCE;
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::TriMesh;
 use sprs::CsMat;
 
 use crate::error::{Result, SpectralError};
@@ -168,7 +168,7 @@ pub struct Pencil {
 /// triangulation (`LaplacianKind::IntrinsicDelaunay`).
 pub fn pencil(mesh: &TriMesh, laplacian: LaplacianKind, mass: LumpedMass) -> Result<Pencil> {
     if mesh.face_count() == 0 {
-        return Err(SpectralError::Mesh(mesh_core::MeshError::Empty));
+        return Err(SpectralError::Mesh(mesh_kernel::MeshError::Empty));
     }
     let start = Instant::now();
     let (kind, degenerate_faces) = laplacian.resolve(mesh);
@@ -210,8 +210,8 @@ pub fn laplace_beltrami(mesh: &TriMesh, laplacian: LaplacianKind, mass: LumpedMa
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::glam::DVec3;
-    use mesh_core::shapes;
+    use mesh_kernel::glam::DVec3;
+    use mesh_kernel::shapes;
 
     #[test]
     fn names_round_trip() {

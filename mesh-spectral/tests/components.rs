@@ -6,9 +6,9 @@
 mod common;
 
 use common::orthonormality_error;
-use mesh_core::glam::DVec3;
-use mesh_core::operators::mass::diagonal;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::operators::mass::diagonal;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{
     eigenpairs, pencil, ComponentSelection, HarmonicsOptions, LaplacianKind, LumpedMass, ManifoldHarmonics, Method,
     Options, SpectralError,

@@ -3,7 +3,7 @@
 mod common;
 
 use common::{masses, orthonormality_error, pencil};
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_spectral::{eigenpairs, Options};
 
 /// The 8 smallest Neumann eigenvalues of the unit disk, (j'_{m,k})^2 with

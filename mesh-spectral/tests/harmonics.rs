@@ -3,8 +3,8 @@
 mod common;
 
 use common::{data_mesh, masses};
-use mesh_core::glam::DVec3;
-use mesh_core::shapes;
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::shapes;
 use mesh_spectral::{
     compress, compression_curve, filter, filter_with, HarmonicsOptions, ManifoldHarmonics, SpectralError, Transfer,
 };

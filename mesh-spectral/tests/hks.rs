@@ -2,7 +2,7 @@
 
 mod common;
 
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_spectral::{heat_kernel_signature, hks_times, HarmonicsOptions, ManifoldHarmonics};
 use std::f64::consts::PI;
 

@@ -4,9 +4,9 @@
 mod common;
 
 use common::{clusters, data_mesh, masses, orthonormality_error, pencil, union};
-use mesh_core::glam::DVec3;
-use mesh_core::operators::mass::diagonal;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::operators::mass::diagonal;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{eigenpairs, HarmonicsOptions, LaplacianKind, ManifoldHarmonics, Options, SpectralError};
 use proptest::prelude::*;
 

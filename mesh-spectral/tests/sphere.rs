@@ -4,7 +4,7 @@
 mod common;
 
 use common::{clusters, masses, orthonormality_error, pencil};
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_spectral::{eigenpairs, Method, Options};
 
 /// Reference eigenvalues of `tests/fixtures/icosphere_scipy.txt` for `level`.

@@ -7,7 +7,7 @@ use std::hint::black_box;
 use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
-use mesh_core::{glam::DVec3, shapes, TriMesh};
+use mesh_kernel::{glam::DVec3, shapes, TriMesh};
 use mesh_wavelet::{detect, subdivide, FilterBank, Multiresolution, Scheme, WaveletKind};
 
 /// A copy without cached connectivity.

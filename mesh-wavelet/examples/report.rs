@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use mesh_core::{glam::DVec3, shapes, TriMesh};
+use mesh_kernel::{glam::DVec3, shapes, TriMesh};
 use mesh_wavelet::{decay_rate, FilterBank, Multiresolution, Scheme, WaveletKind};
 
 /// The icosahedron split `levels` times with new vertices on the unit sphere.

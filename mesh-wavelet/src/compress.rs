@@ -1,7 +1,7 @@
 //! Wavelet compression: keep the largest coefficients, measure the error.
 
 use glam::DVec3;
-use mesh_core::geometry::bounding_box;
+use mesh_kernel::geometry::bounding_box;
 
 use crate::error::{Result, WaveletError};
 use crate::multires::Multiresolution;
@@ -139,7 +139,7 @@ fn check_fraction(f: f64) -> Result<()> {
 
 /// RMS and maximum distance between corresponding vertices, relative to the
 /// bounding-box diagonal of `reference` (absolute if the diagonal is zero).
-pub(crate) fn relative_errors(a: &[DVec3], b: &[DVec3], reference: &mesh_core::TriMesh) -> (f64, f64) {
+pub(crate) fn relative_errors(a: &[DVec3], b: &[DVec3], reference: &mesh_kernel::TriMesh) -> (f64, f64) {
     let diag = bounding_box(reference).map_or(0.0, |bb| bb.diagonal());
     let scale = if diag > 0.0 { 1.0 / diag } else { 1.0 };
     let n = a.len().max(1) as f64;

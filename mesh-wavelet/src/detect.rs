@@ -16,7 +16,7 @@
 //! levels J. Cost O(F) per level and hypothesis, at most four hypotheses per
 //! connected component.
 
-use mesh_core::{MeshError, TriMesh, VertexId};
+use mesh_kernel::{MeshError, TriMesh, VertexId};
 
 use crate::error::{Result, WaveletError};
 use crate::hierarchy::Hierarchy;

@@ -1,6 +1,6 @@
 //! The one error type of the crate.
 
-use mesh_core::MeshError;
+use mesh_kernel::MeshError;
 use thiserror::Error;
 
 /// Everything that can go wrong in `mesh-wavelet`.

@@ -228,7 +228,7 @@ pub struct FilterBank {
 
 impl FilterBank {
     /// Builds the lifting steps of all levels. Every K^j below the finest
-    /// must be an oriented manifold ([`mesh_core::MeshError::NonManifold`]
+    /// must be an oriented manifold ([`mesh_kernel::MeshError::NonManifold`]
     /// otherwise). Cost O(n_J).
     ///
     /// # Errors

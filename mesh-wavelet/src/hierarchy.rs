@@ -6,15 +6,15 @@
 //! first `n_j` of K^{j+1}, followed by the `n_{j+1} - n_j` *odd* vertices
 //! that split the edges of K^j. Each odd vertex knows its parent edge. Built
 //! either top-down from a base mesh ([`Hierarchy::from_base`], the order of
-//! [`mesh_core::shapes::midpoint_subdivide`]: one odd vertex per
-//! [`mesh_core::Connectivity`] edge in edge order, faces `4f..4f+3`) or bottom-up from a
+//! [`mesh_kernel::shapes::midpoint_subdivide`]: one odd vertex per
+//! [`mesh_kernel::Connectivity`] edge in edge order, faces `4f..4f+3`) or bottom-up from a
 //! fine mesh by [`crate::detect()`], in which case it remembers where every
 //! vertex came from.
 
 use std::sync::OnceLock;
 
 use glam::DVec3;
-use mesh_core::{MeshError, TriMesh};
+use mesh_kernel::{MeshError, TriMesh};
 
 use crate::error::{Result, WaveletError};
 use crate::topology::{manifold_topology, Topology};
@@ -82,7 +82,7 @@ impl Hierarchy {
 
     /// Splits the base mesh K^0 (`vertex_count` vertices, `faces`, an oriented
     /// manifold) `levels` times with the vertex and face order of
-    /// [`mesh_core::shapes::midpoint_subdivide`]. Cost O(4^levels F_0).
+    /// [`mesh_kernel::shapes::midpoint_subdivide`]. Cost O(4^levels F_0).
     ///
     /// # Errors
     /// `MeshError::Empty` without faces; the `MeshError` of `TriMesh::new` for faces out of range or
@@ -242,7 +242,7 @@ pub(crate) fn check_size(faces: usize, levels: usize) -> Result<()> {
 }
 
 /// One 4-to-1 split of the faces (topology only), in the order of
-/// [`mesh_core::shapes::midpoint_subdivide`]: odd vertex `n + e` on edge `e`,
+/// [`mesh_kernel::shapes::midpoint_subdivide`]: odd vertex `n + e` on edge `e`,
 /// corner triangles of face `f` at `4f + k`, the middle one at `4f + 3`.
 /// (That function also needs positions; the hierarchy only has topology.)
 pub(crate) fn split_faces(topo: &Topology, faces: &[[u32; 3]], n: u32) -> Vec<[u32; 3]> {
@@ -260,10 +260,10 @@ pub(crate) fn split_faces(topo: &Topology, faces: &[[u32; 3]], n: u32) -> Vec<[u
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
-    fn split_matches_mesh_core_midpoint_subdivide() {
+    fn split_matches_mesh_kernel_midpoint_subdivide() {
         let m = shapes::torus(2.0, 0.5, 6, 4).unwrap();
         let (_, faces) = shapes::midpoint_subdivide(&m);
         let topo = Topology::new(m.vertex_count(), m.faces()).unwrap();

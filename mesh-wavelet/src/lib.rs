@@ -19,12 +19,12 @@
 //! | [`error`] | [`WaveletError`] | |
 //!
 //! Private: `topology`, a lean half-edge structure numbered like
-//! `mesh_core::Connectivity` (faster to build; see the README), and `update`,
+//! `mesh_kernel::Connectivity` (faster to build; see the README), and `update`,
 //! the least-squares weights of the lifted wavelet.
 //!
 //! ```
 //! use mesh_wavelet::{subdivide, Multiresolution, Options, Scheme, CompressOptions};
-//! use mesh_core::shapes;
+//! use mesh_kernel::shapes;
 //!
 //! // A semi-regular mesh: the icosahedron split 3 times, new vertices on the sphere.
 //! let sphere = shapes::icosphere(3)?;

@@ -7,7 +7,7 @@
 //! `P` are the coarse scaling functions and those of `Q` the wavelets,
 //! written in the fine scaling functions.
 
-use mesh_core::sprs::{CsMat, TriMat};
+use mesh_kernel::sprs::{CsMat, TriMat};
 
 use crate::error::{Result, WaveletError};
 use crate::filter::{FilterBank, LevelFilter};

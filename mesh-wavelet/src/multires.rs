@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use mesh_core::{MeshError, TriMesh, VertexId};
+use mesh_kernel::{MeshError, TriMesh, VertexId};
 
 use crate::detect::{detect, DetectOptions};
 use crate::error::{Result, WaveletError};

@@ -1,7 +1,7 @@
 //! Subdivision surfaces by recursive 4-to-1 splitting (seed figure 2.13):
 //! midpoint, Loop and modified butterfly.
 
-use mesh_core::{shapes, MeshError, TriMesh};
+use mesh_kernel::{shapes, MeshError, TriMesh};
 
 use crate::error::Result;
 use crate::hierarchy::{check_size, split_faces};
@@ -12,9 +12,9 @@ use crate::topology::{manifold_topology, Topology};
 /// Splits every triangle of `mesh` into four, `levels` times, placing the
 /// vertices with `scheme`.
 ///
-/// Output order (that of [`mesh_core::shapes::midpoint_subdivide`] at every
+/// Output order (that of [`mesh_kernel::shapes::midpoint_subdivide`] at every
 /// level): the old vertices first, in their order, then one new vertex per
-/// [`mesh_core::Connectivity`] edge in edge order; the corner triangles of
+/// [`mesh_kernel::Connectivity`] edge in edge order; the corner triangles of
 /// face `f` at `4f`, `4f + 1`, `4f + 2`, the middle one at `4f + 3`. The
 /// same numbering as [`crate::Hierarchy::from_base`] on the input faces.
 ///
@@ -40,7 +40,7 @@ pub fn subdivide(mesh: &TriMesh, scheme: Scheme, levels: usize) -> Result<TriMes
 }
 
 /// One level on the lean topology (same numbering as
-/// [`mesh_core::shapes::midpoint_subdivide`], which handles the midpoint
+/// [`mesh_kernel::shapes::midpoint_subdivide`], which handles the midpoint
 /// scheme on non-manifold meshes). The masks are those of the filter banks'
 /// predict steps, applied directly; with zero coefficients the synthesis
 /// step gives the same positions (tested through the matrix P).

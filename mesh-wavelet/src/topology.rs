@@ -2,23 +2,23 @@
 //! filter-bank setup: twins, edges in sorted order, counter-clockwise
 //! outgoing half-edges, vertex kinds.
 //!
-//! It holds a subset of [`mesh_core::Connectivity`] and numbers edges and
+//! It holds a subset of [`mesh_kernel::Connectivity`] and numbers edges and
 //! half-edges the same way (half-edge `3f + k` leaves corner k of face f;
 //! edges sorted by (smaller, larger) endpoint), but is built about three
 //! times faster, because it keeps only what subdivision needs and finds twins
 //! by scanning the (small) outgoing lists instead of sorting all half-edges.
 //! One level of Loop subdivision must beat libigl by 5x, and building
 //! `Connectivity` alone takes more than that budget. On any manifold defect
-//! it gives up, and callers ask `mesh_core` for the precise report.
+//! it gives up, and callers ask `mesh_kernel` for the precise report.
 
 use std::borrow::Cow;
 
-use mesh_core::{Connectivity, MeshError};
+use mesh_kernel::{Connectivity, MeshError};
 
 use crate::error::{Result, WaveletError};
 
 /// Builds the topology, or the precise [`MeshError::NonManifold`] report of
-/// `mesh_core` when the mesh is not an oriented 2-manifold. Cost O(V + F).
+/// `mesh_kernel` when the mesh is not an oriented 2-manifold. Cost O(V + F).
 pub(crate) fn manifold_topology(n: usize, faces: &[[u32; 3]]) -> Result<Topology<'_>> {
     Topology::new(n, faces).map_err(|NotManifold| match Connectivity::new(n, faces).require_manifold() {
         Err(e) => WaveletError::Mesh(e),
@@ -57,7 +57,7 @@ pub(crate) struct Topology<'a> {
     kind: Vec<Kind>,
 }
 
-/// The mesh is not an oriented 2-manifold (details from `mesh_core`).
+/// The mesh is not an oriented 2-manifold (details from `mesh_kernel`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct NotManifold;
 
@@ -366,15 +366,15 @@ impl<'a> Topology<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::{shapes, VertexId, VertexKind};
+    use mesh_kernel::{shapes, VertexId, VertexKind};
 
-    fn same_as_connectivity(mesh: &mesh_core::TriMesh) {
+    fn same_as_connectivity(mesh: &mesh_kernel::TriMesh) {
         let t = Topology::new(mesh.vertex_count(), mesh.faces()).unwrap();
         let c = mesh.connectivity();
         let edges: Vec<[u32; 2]> = c.edges().iter().map(|e| [e[0].0, e[1].0]).collect();
         assert_eq!(t.edges(), &edges[..]);
         for f in 0..mesh.face_count() {
-            assert_eq!(t.face_edges(f), c.face_edges(mesh_core::FaceId::new(f)).map(|e| e.0));
+            assert_eq!(t.face_edges(f), c.face_edges(mesh_kernel::FaceId::new(f)).map(|e| e.0));
         }
         let mut ring = Vec::new();
         for v in 0..mesh.vertex_count() as u32 {
@@ -399,7 +399,7 @@ mod tests {
     }
 
     #[test]
-    fn agrees_with_mesh_core() {
+    fn agrees_with_mesh_kernel() {
         same_as_connectivity(&shapes::icosphere(2).unwrap());
         same_as_connectivity(&shapes::disk(4, 3).unwrap());
         same_as_connectivity(&shapes::cylinder(1.0, 1.0, 7, 3).unwrap());
@@ -410,10 +410,10 @@ mod tests {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(400))]
 
         /// On random triangle soups (mostly non-manifold) the lean build
-        /// accepts exactly what mesh-core calls an oriented manifold, and then
+        /// accepts exactly what mesh-kernel calls an oriented manifold, and then
         /// agrees with it.
         #[test]
-        fn agrees_with_mesh_core_on_random_soups(
+        fn agrees_with_mesh_kernel_on_random_soups(
             n in 3usize..9,
             raw in proptest::collection::vec((0u32..9, 0u32..9, 0u32..9), 1..14),
         ) {
@@ -423,7 +423,7 @@ mod tests {
                 .filter(|&[a, b, c]| a != b && b != c && a != c)
                 .collect();
             proptest::prop_assume!(!faces.is_empty());
-            let mesh = mesh_core::TriMesh::new(vec![mesh_core::glam::DVec3::ZERO; n], faces.clone()).unwrap();
+            let mesh = mesh_kernel::TriMesh::new(vec![mesh_kernel::glam::DVec3::ZERO; n], faces.clone()).unwrap();
             let manifold = mesh.connectivity().is_manifold();
             let ours = Topology::new(n, &faces);
             proptest::prop_assert_eq!(ours.is_ok(), manifold, "{:?}", faces);

@@ -5,7 +5,7 @@
 mod common;
 
 use common::{base_meshes, real_mesh, relative_max_distance, shuffled, Rng};
-use mesh_core::{glam::DVec3, shapes, MeshError, TriMesh};
+use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
 use mesh_wavelet::{
     detect, subdivide, DetectOptions, Hierarchy, Multiresolution, Options, Scheme, WaveletError, WaveletKind,
 };
@@ -149,7 +149,7 @@ fn meshes_without_subdivision_connectivity_say_so() {
     let mut faces = fine.faces().to_vec();
     let c = fine.connectivity();
     let e = (0..c.edge_count())
-        .map(mesh_core::EdgeId::new)
+        .map(mesh_kernel::EdgeId::new)
         .find(|&e| {
             !c.is_boundary_edge(e) && c.valence(c.edge_vertices(e)[0]) == 6 && c.valence(c.edge_vertices(e)[1]) == 6
         })

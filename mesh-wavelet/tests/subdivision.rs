@@ -1,11 +1,11 @@
-//! Subdivision against ground truth: counts and topology, mesh-core's
+//! Subdivision against ground truth: counts and topology, mesh-kernel's
 //! midpoint split, polynomial reproduction of butterfly and Loop on regular
 //! grids, Loop limit positions, affine invariance, bad input.
 
 mod common;
 
 use common::{base_meshes, real_mesh, Rng};
-use mesh_core::{glam::DVec3, shapes, MeshError, TriMesh};
+use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
 use mesh_wavelet::{rules::loop_beta, subdivide, Scheme, WaveletError};
 use proptest::prelude::*;
 
@@ -24,7 +24,7 @@ fn counts_topology_and_order() {
                 assert_eq!(c.euler_characteristic(), c0.euler_characteristic());
                 assert_eq!(c.boundary_loop_count(), c0.boundary_loop_count());
                 assert_eq!(c.components().count, c0.components().count);
-                // Same topology and numbering for every scheme: that of mesh-core's midpoint split.
+                // Same topology and numbering for every scheme: that of mesh-kernel's midpoint split.
                 let (_, faces) = shapes::midpoint_subdivide(&prev);
                 assert_eq!(m.faces(), &faces[..], "{name} {scheme} level {level}");
                 if scheme.is_interpolating() {
@@ -38,7 +38,7 @@ fn counts_topology_and_order() {
 }
 
 #[test]
-fn midpoint_is_mesh_core_midpoint_split() {
+fn midpoint_is_mesh_kernel_midpoint_split() {
     let m = shapes::cube(2).unwrap();
     let (p, f) = shapes::midpoint_subdivide(&m);
     assert_eq!(subdivide(&m, Scheme::Midpoint, 1).unwrap(), TriMesh::new(p, f).unwrap());
@@ -108,7 +108,7 @@ fn loop_converges_to_its_limit_positions() {
     // 3/8 + cos(2 pi / n) / 4 per level.
     let ico = shapes::icosphere(0).unwrap();
     let c = ico.connectivity();
-    let v0 = mesh_core::VertexId(0);
+    let v0 = mesh_kernel::VertexId(0);
     let n = c.valence(v0);
     let w = 1.0 / (n as f64 + 3.0 / (8.0 * loop_beta(n)));
     let sum: DVec3 = c.neighbors(v0).map(|u| ico.position(u)).sum();
@@ -139,7 +139,7 @@ fn loop_stays_in_the_bounding_box_of_real_meshes() {
     // Loop's masks are convex combinations.
     for name in ["npm_bunny.obj", "cgal_holes.off", "cgal_elephant.off"] {
         let Some(m) = real_mesh(name) else { return };
-        let bb = mesh_core::geometry::bounding_box(&m).unwrap();
+        let bb = mesh_kernel::geometry::bounding_box(&m).unwrap();
         let s = subdivide(&m, Scheme::Loop, 1).unwrap();
         let c = s.connectivity();
         assert!(c.is_manifold());

@@ -8,7 +8,7 @@ mod common;
 use std::sync::Arc;
 
 use common::{bumpy_sphere, real_mesh, relative_max_distance, shuffled, smooth_torus, Rng};
-use mesh_core::{glam::DVec3, shapes, sprs::CsMat, MeshError, TriMesh};
+use mesh_kernel::{glam::DVec3, shapes, sprs::CsMat, MeshError, TriMesh};
 use mesh_wavelet::{
     decay_rate, inner_product_matrix, subdivide, CompressOptions, FilterBank, Hierarchy, Multiresolution, Options,
     Scheme, WaveletError, WaveletKind,
@@ -344,7 +344,7 @@ fn editing_the_base_mesh_carries_the_details() {
 
 #[test]
 fn reconstruction_from_subsets_and_levels_of_detail() {
-    // The icosphere's numbering is the hierarchical one (mesh-core builds
+    // The icosphere's numbering is the hierarchical one (mesh-kernel builds
     // it with midpoint_subdivide), so meshes compare vertex by vertex.
     let mesh = bumpy_sphere(4);
     for scheme in Scheme::ALL {

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use mesh_core::clean::{CleanOptions, CleanReport};
+use mesh_kernel::clean::{CleanOptions, CleanReport};
 use serde::Serialize;
 
 use crate::input::read_mesh;
@@ -37,7 +37,7 @@ pub struct Args {
     json: bool,
 }
 
-/// What `mesh_core::clean` changed, and the size of its result.
+/// What `mesh_kernel::clean` changed, and the size of its result.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct Summary {
     welded_vertices: usize,
@@ -57,7 +57,7 @@ pub(crate) struct Summary {
 }
 
 impl Summary {
-    pub(crate) fn new(r: &CleanReport, mesh: &mesh_core::TriMesh) -> Self {
+    pub(crate) fn new(r: &CleanReport, mesh: &mesh_kernel::TriMesh) -> Self {
         Self {
             welded_vertices: r.welded_vertices,
             collapsed_faces: r.collapsed_faces,

@@ -226,7 +226,7 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
     let elapsed = start.elapsed().as_secs_f64() * 1e3;
 
     let t = &c.tensor;
-    let split = |v: &[mesh_core::glam::DVec3]| -> [Vec<f64>; 3] {
+    let split = |v: &[mesh_kernel::glam::DVec3]| -> [Vec<f64>; 3] {
         [v.iter().map(|d| d.x).collect(), v.iter().map(|d| d.y).collect(), v.iter().map(|d| d.z).collect()]
     };
     let [d1x, d1y, d1z] = split(&t.d1);
@@ -391,7 +391,7 @@ mod tests {
         let total: f64 = data.scalar("gaussian_integrated").unwrap().iter().sum();
         assert!(total.abs() < 1e-9 && (summary.gauss_bonnet_total - summary.two_pi_chi).abs() < 1e-9);
         // Positions survive as doubles.
-        assert_eq!(data.mesh.positions(), mesh_core::shapes::by_name("torus", 16).unwrap().positions());
+        assert_eq!(data.mesh.positions(), mesh_kernel::shapes::by_name("torus", 16).unwrap().positions());
     }
 
     #[test]

@@ -12,7 +12,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mesh_core::VertexId;
+use mesh_kernel::VertexId;
 use mesh_geodesic::{
     dijkstra, exact_distance, trace_path, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, FmmUpdate,
     HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus, SurfacePoint, TraceOptions,
@@ -161,7 +161,7 @@ impl Field {
 }
 
 /// The distance field of the chosen method.
-fn distance(args: &Args, mesh: &mesh_core::TriMesh, sources: &[VertexId]) -> CliResult<Field> {
+fn distance(args: &Args, mesh: &mesh_kernel::TriMesh, sources: &[VertexId]) -> CliResult<Field> {
     match args.method.as_str() {
         "heat" => {
             let laplacian = match args.laplacian.as_str() {
@@ -422,7 +422,7 @@ mod tests {
         // edge lengths the heat flow is not resolved.
         let dir = tempfile::tempdir().unwrap();
         let input = dir.path().join("strip.ply");
-        let strip = mesh_core::shapes::grid(6000.0, 2.0, 6000, 2).unwrap();
+        let strip = mesh_kernel::shapes::grid(6000.0, 2.0, 6000, 2).unwrap();
         mesh_io::write(&input, MeshView::new(&strip), &binary_ply()).unwrap();
         let out = dir.path().join("d.ply");
         for far_field in ["fmm", "restart", "none"] {

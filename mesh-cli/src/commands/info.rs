@@ -1,6 +1,6 @@
 //! `mesh info`: counts, topology, manifoldness and defects.
 
-use mesh_core::{clean, geometry, TriMesh};
+use mesh_kernel::{clean, geometry, TriMesh};
 use serde::Serialize;
 
 use crate::input::InputArgs;
@@ -78,7 +78,7 @@ impl Info {
         let closed = c.boundary_loop_count() == Some(0);
         // Area and volume measured on the mesh in its power-of-two unit,
         // then carried back (or reported as out of range).
-        let (normalized, unit) = mesh_core::units::normalized(mesh);
+        let (normalized, unit) = mesh_kernel::units::normalized(mesh);
         let mut out_of_range = Vec::new();
         let mut carry = |name: &str, inner: f64, degree: i32| match rescaled(inner, unit, degree) {
             Ok(v) => Some(v),

@@ -164,8 +164,8 @@ fn compare(t: &Tessellation) -> CliResult<Comparison> {
     let conn = t.mesh.connectivity();
     let keep: Vec<usize> = (0..t.mesh.vertex_count())
         .filter(|&i| {
-            let v = mesh_core::VertexId::new(i);
-            t.regular[i] && conn.vertex_kind(v) == mesh_core::VertexKind::Interior && estimate.status[i].is_valid()
+            let v = mesh_kernel::VertexId::new(i);
+            t.regular[i] && conn.vertex_kind(v) == mesh_kernel::VertexKind::Interior && estimate.status[i].is_valid()
         })
         .collect();
     let max_error = |f: &dyn Fn(usize) -> f64| finite(keep.iter().map(|&i| f(i).abs()).fold(f64::NAN, f64::max));

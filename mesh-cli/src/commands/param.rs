@@ -12,8 +12,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mesh_core::clean::CleanOptions;
-use mesh_core::TriMesh;
+use mesh_kernel::clean::CleanOptions;
+use mesh_kernel::TriMesh;
 use mesh_io::MeshView;
 use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSummary, Method, Spacing};
 use serde::Serialize;
@@ -97,7 +97,7 @@ impl std::str::FromStr for CleanMode {
 /// What was done to make the input an oriented manifold.
 #[derive(Debug, Clone, Serialize)]
 pub struct Cleaning {
-    /// Whether `mesh_core::clean` ran.
+    /// Whether `mesh_kernel::clean` ran.
     pub applied: bool,
     /// Why it ran, or why not.
     pub reason: String,
@@ -271,7 +271,7 @@ fn options(args: &Args) -> CliResult<AtlasOptions> {
 }
 
 /// Cleans `mesh` as `mode` says so that it becomes an oriented manifold
-/// (`mesh_core::clean` with `manifold`: fins detached, unorientable gluing
+/// (`mesh_kernel::clean` with `manifold`: fins detached, unorientable gluing
 /// cut, one vertex per fan, then duplicate, zero-area and unreferenced
 /// elements dropped), and says what was done.
 pub(crate) fn prepare(mesh: TriMesh, mode: CleanMode) -> CliResult<(TriMesh, Cleaning)> {
@@ -466,7 +466,7 @@ impl Args {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::glam::DVec2;
+    use mesh_kernel::glam::DVec2;
 
     fn args(extra: &[&str]) -> Args {
         crate::commands::parse_args("param", extra)
@@ -591,11 +591,11 @@ mod tests {
     fn several_components_are_packed_apart() {
         let dir = tempfile::tempdir().unwrap();
         let input = dir.path().join("two.obj");
-        let torus = mesh_core::shapes::torus(2.0, 0.5, 16, 8).unwrap();
-        let sphere = mesh_core::shapes::icosphere(2).unwrap();
+        let torus = mesh_kernel::shapes::torus(2.0, 0.5, 16, 8).unwrap();
+        let sphere = mesh_kernel::shapes::icosphere(2).unwrap();
         let (mut p, mut f) = torus.into_parts();
         let n = p.len() as u32;
-        p.extend(sphere.positions().iter().map(|q| *q + mesh_core::glam::DVec3::X * 5.0));
+        p.extend(sphere.positions().iter().map(|q| *q + mesh_kernel::glam::DVec3::X * 5.0));
         f.extend(sphere.faces().iter().map(|t| t.map(|v| v + n)));
         mesh_io::write(&input, &TriMesh::new(p, f).unwrap(), &Default::default()).unwrap();
         let out = dir.path().join("two_uv.obj");

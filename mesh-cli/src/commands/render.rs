@@ -39,8 +39,8 @@ pub struct Args {
 
 /// The unit vector of an axis name; `auto` is the convention of the input
 /// file's format ([`mesh_io::Format::conventional_up`]), z for built-in shapes.
-pub fn axis(name: &str, input: &InputArgs) -> CliResult<mesh_core::glam::DVec3> {
-    use mesh_core::glam::DVec3;
+pub fn axis(name: &str, input: &InputArgs) -> CliResult<mesh_kernel::glam::DVec3> {
+    use mesh_kernel::glam::DVec3;
     match name {
         "x" => Ok(DVec3::X),
         "y" => Ok(DVec3::Y),

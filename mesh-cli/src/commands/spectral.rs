@@ -17,7 +17,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use mesh_io::MeshView;
 use mesh_spectral::{
     compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, CompressionError,
@@ -458,7 +458,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
     let filtered = filter_mesh(mesh, &mh, &transfer)?;
     let time_ms = ms(start);
     write_mesh(&args.out, &filtered, &args.write.options(Default::default()))?;
-    let diagonal = mesh_core::geometry::bounding_box(mesh).map_or(1.0, |b| b.diagonal());
+    let diagonal = mesh_kernel::geometry::bounding_box(mesh).map_or(1.0, |b| b.diagonal());
     let moved = mesh.positions().iter().zip(filtered.positions()).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
     let summary = FilterSummary {
         input: args.input.describe(),

@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use mesh_wavelet::{decay_rate, subdivide, CompressOptions, Multiresolution, Options, Scheme, WaveletKind};
 use serde::Serialize;
 
@@ -105,10 +105,10 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
 /// The mesh without the vertices no face uses (the others renumbered in
 /// order), and how many were dropped. Cost O(V + F).
 fn drop_unreferenced(mesh: &TriMesh) -> CliResult<(std::borrow::Cow<'_, TriMesh>, usize)> {
-    if mesh_core::clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).is_empty() {
+    if mesh_kernel::clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).is_empty() {
         return Ok((std::borrow::Cow::Borrowed(mesh), 0));
     }
-    let only_unreferenced = mesh_core::clean::CleanOptions {
+    let only_unreferenced = mesh_kernel::clean::CleanOptions {
         weld_tolerance: None,
         drop_degenerate: false,
         drop_duplicates: false,
@@ -415,7 +415,7 @@ fn max_distance(a: &TriMesh, b: &TriMesh) -> f64 {
 }
 
 fn diagonal(mesh: &TriMesh) -> f64 {
-    mesh_core::geometry::bounding_box(mesh).map_or(1.0, |b| if b.diagonal() > 0.0 { b.diagonal() } else { 1.0 })
+    mesh_kernel::geometry::bounding_box(mesh).map_or(1.0, |b| if b.diagonal() > 0.0 { b.diagonal() } else { 1.0 })
 }
 
 fn print_analysis(s: &AnalyzeSummary) {
@@ -550,7 +550,7 @@ mod tests {
             };
             run_subdivide(&a).unwrap();
             let m = mesh_io::read(&out).unwrap().mesh;
-            let input = mesh_core::shapes::by_name("torus", 4).unwrap();
+            let input = mesh_kernel::shapes::by_name("torus", 4).unwrap();
             assert_eq!(m.face_count(), 16 * input.face_count());
             if scheme != "loop" {
                 assert_eq!(&m.positions()[..input.vertex_count()], input.positions());

@@ -3,7 +3,7 @@
 //! top left, and at the bottom left the note that the colours were clipped
 //! to the 2-98% percentiles, with the full range, when they were.
 
-use mesh_core::glam::DVec3;
+use mesh_kernel::glam::DVec3;
 
 use super::font::{self, GLYPH_HEIGHT, GLYPH_WIDTH};
 use super::ColorScale;

@@ -9,9 +9,9 @@ mod legend;
 
 use std::path::Path;
 
-use mesh_core::geometry::{self, NormalWeighting};
-use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::TriMesh;
+use mesh_kernel::geometry::{self, NormalWeighting};
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::TriMesh;
 
 use crate::output::CliResult;
 
@@ -236,7 +236,7 @@ mod tests {
 
     #[test]
     fn sphere_covers_the_middle_and_not_the_corner() {
-        let m = mesh_core::shapes::icosphere(3).unwrap();
+        let m = mesh_kernel::shapes::icosphere(3).unwrap();
         let opts = RenderOptions { width: 64, height: 64, ..Default::default() };
         let rgb = rasterize(&m, None, &opts);
         let px = |x: usize, y: usize| &rgb[(y * 64 + x) * 3..(y * 64 + x) * 3 + 3];

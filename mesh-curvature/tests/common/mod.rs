@@ -6,8 +6,8 @@
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::CurvatureTensor;
 
 /// Exact curvature per vertex: principal curvatures, the k1 direction where
@@ -27,7 +27,7 @@ pub fn sphere(level: u32) -> (TriMesh, Truth) {
 }
 
 /// Torus R = 2, r = 0.5 on an `nu` x `nv` grid, vertex `i nv + j` at
-/// u = 2 pi i / nu, v = 2 pi j / nv (documented by mesh-core): k1 = 1 / r
+/// u = 2 pi i / nu, v = 2 pi j / nv (documented by mesh-kernel): k1 = 1 / r
 /// around the tube, k2 = cos v / (R + r cos v) along it.
 pub fn torus(nu: usize, nv: usize) -> (TriMesh, Truth) {
     let (big, r) = (2.0, 0.5);

@@ -3,7 +3,7 @@
 //! Each returns `+infinity` when it has no causal solution, which leaves the
 //! edge updates to the caller.
 
-use mesh_core::glam::DVec2;
+use mesh_kernel::glam::DVec2;
 
 /// Relative tolerance below which a triangle counts as degenerate.
 const DEGENERATE: f64 = 1e-12;

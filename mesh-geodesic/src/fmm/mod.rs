@@ -32,7 +32,7 @@ mod stencil;
 
 use std::collections::BinaryHeap;
 
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::{TriMesh, VertexId};
 
 use crate::error::{GeodesicError, Result};
 use crate::support::{validate_length, validate_sources, HeapEntry};
@@ -98,7 +98,7 @@ impl Default for FmmOptions {
 /// O(V log V) each.
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{FastMarching, FmmOptions};
 ///
 /// let sphere = shapes::icosphere(4)?;
@@ -118,7 +118,7 @@ pub struct FastMarching {
     /// Max distance in the internal unit.
     max_distance: f64,
     update: FmmUpdate,
-    /// The unit of length the stencils are in ([`mesh_core::units::normalized`]):
+    /// The unit of length the stencils are in ([`mesh_kernel::units::normalized`]):
     /// internal distances times `unit` are distances on the mesh.
     pub(crate) unit: f64,
 }
@@ -151,7 +151,7 @@ impl FastMarching {
         }
         let curved = options.update == FmmUpdate::CurvedFront;
         // Metric determinants are of degree four in the coordinates.
-        let (mesh, unit) = mesh_core::units::normalized(mesh);
+        let (mesh, unit) = mesh_kernel::units::normalized(mesh);
         let stencils = Stencils::new(&mesh, options.split_obtuse, options.max_unfold, curved);
         // Weights in the internal (breadth-first) numbering.
         let weights = options.weights.as_ref().map(|w| stencils.order.iter().map(|&v| w[v as usize]).collect());
@@ -243,7 +243,7 @@ impl FastMarching {
 /// Cost O(F) preprocessing plus O(V log V).
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{fmm_distance, FmmOptions};
 ///
 /// // On a flat disk geodesic distance is Euclidean distance.

@@ -3,8 +3,8 @@
 //! unfolding (Kimmel and Sethian 1998), and the per-vertex Gaussian
 //! curvature that the curved-front update needs.
 
-use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::{Connectivity, FaceId, HalfedgeId, TriMesh, VertexId, VertexKind};
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::{Connectivity, FaceId, HalfedgeId, TriMesh, VertexId, VertexKind};
 
 /// Relative tolerance below which a corner counts as degenerate.
 const DEGENERATE: f64 = 1e-12;
@@ -243,7 +243,7 @@ pub(crate) fn split_obtuse(
     let (e1, e2) = (p[x1.idx()] - p[x.idx()], p[x2.idx()] - p[x.idx()]);
     let l1 = e1.length();
     let q1 = DVec2::new(l1, 0.0);
-    let q2 = DVec2::new(e1.dot(e2) / l1, mesh_core::geometry::norm(e1.cross(e2)) / l1);
+    let q2 = DVec2::new(e1.dot(e2) / l1, mesh_kernel::geometry::norm(e1.cross(e2)) / l1);
     // The edge being crossed runs from a (on the e1 side) to b (on the e2
     // side); `apex` is the vertex of the current triangle opposite to it.
     let mut h = h0.next();
@@ -346,7 +346,7 @@ mod tests {
     fn unfolding_matches_the_flat_layout() {
         // On a flat sheared grid the unfolded position of the split vertex is
         // its true position relative to the corner.
-        let mut m = mesh_core::shapes::grid(1.0, 1.0, 4, 4).unwrap();
+        let mut m = mesh_kernel::shapes::grid(1.0, 1.0, 4, 4).unwrap();
         m.positions_mut().iter_mut().for_each(|p| p.x += 0.05 * p.y);
         let (conn, p) = (m.connectivity(), m.positions());
         let mut split = 0;
@@ -386,12 +386,12 @@ mod tests {
 
     #[test]
     fn curvature_of_a_sphere_is_one() {
-        let m = mesh_core::shapes::icosphere(4).unwrap();
+        let m = mesh_kernel::shapes::icosphere(4).unwrap();
         let k = Stencils::new(&m, true, 20, true).curvature;
         let mean = k.iter().sum::<f64>() / k.len() as f64;
         assert!((mean - 1.0).abs() < 0.02, "{mean}");
         assert!(k.iter().all(|k| (k - 1.0).abs() < 0.1));
-        let flat = Stencils::new(&mesh_core::shapes::disk(5, 1).unwrap(), true, 20, true).curvature;
+        let flat = Stencils::new(&mesh_kernel::shapes::disk(5, 1).unwrap(), true, 20, true).curvature;
         assert!(flat.iter().all(|k| k.abs() < 1e-9));
     }
 }

@@ -3,8 +3,8 @@
 //! pinned vertices, and the pieces of the Laplacian that need one pinned
 //! vertex each.
 
-use mesh_core::sprs::CsMat;
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::sprs::CsMat;
+use mesh_kernel::{TriMesh, VertexId};
 
 use super::face::FaceGradient;
 
@@ -24,7 +24,7 @@ pub(crate) fn unchanged_lengths(mesh: &TriMesh, lengths: &[f64]) -> bool {
     mesh.faces()
         .iter()
         .zip(lengths.chunks_exact(3))
-        .all(|(f, l)| (0..3).all(|k| mesh_core::geometry::norm(p[f[(k + 1) % 3] as usize] - p[f[k] as usize]) == l[k]))
+        .all(|(f, l)| (0..3).all(|k| mesh_kernel::geometry::norm(p[f[(k + 1) % 3] as usize] - p[f[k] as usize]) == l[k]))
 }
 
 /// `diag(mass) + t L` with 1 on the diagonal of isolated vertices. Same

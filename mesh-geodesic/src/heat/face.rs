@@ -4,11 +4,11 @@
 //! section 3.2), intrinsic so that the same code serves the mesh and its
 //! intrinsic Delaunay triangulation.
 
-use mesh_core::glam::DVec2;
-use mesh_core::{clean, operators, TriMesh};
+use mesh_kernel::glam::DVec2;
+use mesh_kernel::{clean, operators, TriMesh};
 
 /// Below this relative area a triangle carries no gradient.
-const DEGENERATE: f64 = mesh_core::operators::laplacian::DEGENERATE_TOLERANCE;
+const DEGENERATE: f64 = mesh_kernel::operators::laplacian::DEGENERATE_TOLERANCE;
 
 /// One triangle laid out in the plane: its vertices and the area-weighted
 /// gradients of its hat functions, `w_k = A grad(phi_k)` (half the edge
@@ -64,7 +64,7 @@ impl FaceGradient {
 }
 
 /// The mesh's own triangles laid out from their 3D edge lengths; triangles
-/// that [`mesh_core::clean::is_degenerate_triangle`] flags carry no gradient,
+/// that [`mesh_kernel::clean::is_degenerate_triangle`] flags carry no gradient,
 /// as they carry no cotangent weight.
 pub(crate) fn extrinsic_faces(mesh: &TriMesh) -> Vec<FaceGradient> {
     mesh.face_ids()
@@ -82,7 +82,7 @@ pub(crate) fn extrinsic_faces(mesh: &TriMesh) -> Vec<FaceGradient> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::operators;
+    use mesh_kernel::operators;
 
     #[test]
     fn face_gradients_reproduce_linear_functions() {

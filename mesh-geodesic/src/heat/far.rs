@@ -11,8 +11,8 @@
 //! the flow is resolved, down to [`RESOLVED`] = 2^-1000, for about 1400 h.
 //! Beyond that [`HeatFarField`] chooses the continuation.
 
-use mesh_core::glam::DVec2;
-use mesh_core::FaceId;
+use mesh_kernel::glam::DVec2;
+use mesh_kernel::FaceId;
 
 use super::{HeatDistance, HeatFarField, HeatGeodesics, HeatStatus};
 use crate::error::Result;
@@ -87,7 +87,7 @@ impl HeatGeodesics {
         mut phi: Vec<f64>,
         u: &[f64],
         resolved: &[bool],
-        sources: &[mesh_core::VertexId],
+        sources: &[mesh_kernel::VertexId],
     ) -> Result<HeatDistance> {
         let mut status: Vec<HeatStatus> = (0..phi.len())
             .map(|v| match (phi[v].is_finite(), resolved[v]) {

@@ -51,10 +51,10 @@ mod face;
 mod far;
 mod status;
 
-use mesh_core::glam::DVec2;
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_core::solver::Cholesky;
-use mesh_core::{TriMesh, VertexId, VertexKind};
+use mesh_kernel::glam::DVec2;
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::solver::Cholesky;
+use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
 use crate::error::{GeodesicError, Result};
 use crate::support::validate_sources;
@@ -130,7 +130,7 @@ impl Default for HeatOptions {
 /// lengths from the sources).
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{HeatGeodesics, HeatOptions};
 ///
 /// let sphere = shapes::icosphere(4)?;
@@ -192,10 +192,10 @@ impl HeatGeodesics {
             });
         }
         if mesh.face_count() == 0 {
-            return Err(mesh_core::MeshError::Empty.into());
+            return Err(mesh_kernel::MeshError::Empty.into());
         }
         // Masses are areas: work in a unit where they cannot over- or underflow.
-        let (mesh, unit) = mesh_core::units::normalized(mesh);
+        let (mesh, unit) = mesh_kernel::units::normalized(mesh);
         let mesh = mesh.as_ref();
         let n = mesh.vertex_count();
         let extrinsic = || {
@@ -231,7 +231,7 @@ impl HeatGeodesics {
                  use HeatLaplacian::IntrinsicDelaunay"
             )));
         }
-        let mean_edge = mesh_core::geometry::mean_edge_length(mesh);
+        let mean_edge = mesh_kernel::geometry::mean_edge_length(mesh);
         let time = options.time_factor * mean_edge * mean_edge;
         if !(time > 0.0 && time.is_finite()) {
             return Err(GeodesicError::Degenerate("all edges have zero length".into()));
@@ -411,7 +411,7 @@ impl HeatGeodesics {
 /// One-off heat-method distance from `sources` (see [`HeatGeodesics`]).
 ///
 /// ```
-/// use mesh_core::{shapes, VertexId};
+/// use mesh_kernel::{shapes, VertexId};
 /// use mesh_geodesic::{heat_distance, HeatOptions};
 ///
 /// let disk = shapes::disk(12, 3)?;
@@ -432,7 +432,7 @@ pub fn heat_distance(mesh: &TriMesh, sources: &[VertexId], options: &HeatOptions
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mesh_core::shapes;
+    use mesh_kernel::shapes;
 
     #[test]
     fn heat_values_fill_the_exponent_range() {
@@ -446,7 +446,7 @@ mod tests {
         let bottom = u.iter().copied().fold(f64::INFINITY, f64::min);
         assert!(bottom >= far::RESOLVED, "{bottom:e}");
         // The decay: about 0.42 decimal orders per mean edge length.
-        let h = mesh_core::geometry::mean_edge_length(&mesh);
+        let h = mesh_kernel::geometry::mean_edge_length(&mesh);
         let per_h = (top.log10() - u[1500].log10()) / (1500.0 / h);
         assert!((0.38..0.46).contains(&per_h), "{per_h}");
     }

@@ -5,8 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
-use mesh_core::glam::DVec3;
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{TriMesh, VertexId};
 
 /// The shared data folder, or `None` (with a message) when it is absent.
 pub fn data_dir() -> Option<PathBuf> {

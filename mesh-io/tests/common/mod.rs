@@ -1,8 +1,8 @@
 //! Shared test meshes.
 #![allow(dead_code)]
 
-use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::TriMesh;
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::TriMesh;
 use mesh_io::MeshData;
 
 /// An `n x n` vertex grid over `[0, 1]^2` with a bump in z, coordinates that

@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 
 /// The shared data folder, or `None` (with a message) when absent.
 pub fn data_dir() -> Option<PathBuf> {

@@ -9,7 +9,7 @@
 //! unknown are contiguous), so every non-zero of the factor is read once per
 //! block and applied to `b` contiguous values: the inner loops are
 //! `b`-wide fused multiply-adds that the compiler vectorizes.
-//! `mesh_core::solver::Cholesky` is the general-purpose wrapper; this
+//! `mesh_kernel::solver::Cholesky` is the general-purpose wrapper; this
 //! private helper exists for speed only (see the crate README).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -19,7 +19,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMat;
 use faer::Side;
-use mesh_core::MeshError;
+use mesh_kernel::MeshError;
 
 use crate::error::Result;
 
@@ -300,8 +300,8 @@ mod tests {
 
     #[test]
     fn solves_a_grid_laplacian_with_a_block_of_right_hand_sides() {
-        let m = mesh_core::shapes::grid(1.0, 1.0, 20, 17).unwrap();
-        let l = mesh_core::operators::cotan_laplacian(&m);
+        let m = mesh_kernel::shapes::grid(1.0, 1.0, 20, 17).unwrap();
+        let l = mesh_kernel::operators::cotan_laplacian(&m);
         let n = l.rows();
         let mut t = TriMat::new((n, n));
         for (&v, (i, j)) in l.iter() {
@@ -311,7 +311,7 @@ mod tests {
             t.add_triplet(i, i, 0.01);
         }
         let a: sprs::CsMat<f64> = t.to_csr();
-        let chol = BlockCholesky::new(&mesh_core::solver::to_faer(&a).unwrap()).unwrap();
+        let chol = BlockCholesky::new(&mesh_kernel::solver::to_faer(&a).unwrap()).unwrap();
         let truth: Vec<Lane> = (0..n).map(|i| std::array::from_fn(|j| ((i * 37 + j * 5) % 11) as f64 - 5.0)).collect();
         // rhs = A truth, in permuted order.
         let mut rhs = vec![[0.0; LANES]; n];

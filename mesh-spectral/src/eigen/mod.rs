@@ -392,7 +392,7 @@ struct Units {
 
 impl Units {
     fn of(l: &CsMat<f64>, m: &CsMat<f64>) -> Self {
-        let unit = |a: &CsMat<f64>| mesh_core::units::unit_of(a.data().iter().copied());
+        let unit = |a: &CsMat<f64>| mesh_kernel::units::unit_of(a.data().iter().copied());
         let safe = |x: f64| (2f64.powi(-100)..=2f64.powi(100)).contains(&x);
         let (lu, mu) = (unit(l), unit(m));
         if safe(lu) && safe(mu) {

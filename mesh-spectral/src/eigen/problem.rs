@@ -228,7 +228,7 @@ mod tests {
     #[test]
     fn components_and_exclusion() {
         let l = path(6, &[(0, 2), (2, 4), (1, 3)]);
-        let m = mesh_core::operators::mass::diagonal(vec![1.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
+        let m = mesh_kernel::operators::mass::diagonal(vec![1.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
         let p = split(&l, &m).unwrap();
         assert_eq!(p.components.len(), 1);
         assert_eq!(p.components[0].vertices, vec![0, 2, 4]);
@@ -239,7 +239,7 @@ mod tests {
     #[test]
     fn largest_by_mass_and_shifted_rows() {
         let l = path(5, &[(0, 1), (2, 3), (3, 4)]);
-        let m = mesh_core::operators::mass::diagonal(vec![5.0, 5.0, 1.0, 1.0, 1.0]);
+        let m = mesh_kernel::operators::mass::diagonal(vec![5.0, 5.0, 1.0, 1.0, 1.0]);
         let mut p = split(&l, &m).unwrap();
         p.keep_largest();
         assert_eq!(p.components.len(), 1);
@@ -250,10 +250,10 @@ mod tests {
     #[test]
     fn rejects_bad_matrices() {
         let l = path(3, &[(0, 1)]);
-        let good = mesh_core::operators::mass::diagonal(vec![1.0; 3]);
-        assert!(split(&l, &mesh_core::operators::mass::diagonal(vec![1.0; 2])).is_err());
-        assert!(split(&l, &mesh_core::operators::mass::diagonal(vec![1.0, -1.0, 1.0])).is_err());
-        assert!(split(&l, &mesh_core::operators::mass::diagonal(vec![1.0, f64::NAN, 1.0])).is_err());
+        let good = mesh_kernel::operators::mass::diagonal(vec![1.0; 3]);
+        assert!(split(&l, &mesh_kernel::operators::mass::diagonal(vec![1.0; 2])).is_err());
+        assert!(split(&l, &mesh_kernel::operators::mass::diagonal(vec![1.0, -1.0, 1.0])).is_err());
+        assert!(split(&l, &mesh_kernel::operators::mass::diagonal(vec![1.0, f64::NAN, 1.0])).is_err());
         let mut t = TriMat::new((3, 3));
         t.add_triplet(0, 1, 1.0);
         assert!(split(&t.to_csr(), &good).is_err(), "non-symmetric L");

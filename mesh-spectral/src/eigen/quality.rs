@@ -37,7 +37,7 @@ pub(crate) struct Stiffness {
 impl Stiffness {
     pub fn new(l: &sprs::CsMat<f64>) -> Result<Self> {
         let abs = l.map(|v| v.abs());
-        Ok(Self { l: mesh_core::solver::to_faer(l)?, abs: mesh_core::solver::to_faer(&abs)? })
+        Ok(Self { l: mesh_kernel::solver::to_faer(l)?, abs: mesh_kernel::solver::to_faer(&abs)? })
     }
 }
 

@@ -44,8 +44,8 @@ impl ShiftInvert {
     /// # Errors
     /// `SpectralError::Mesh` (`MeshError::Solver`) when the shifted matrix cannot be factorized.
     pub fn new(c: &Component, shift: f64) -> Result<Self> {
-        let k = &c.laplacian - &mesh_core::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
-        let chol = BlockCholesky::new(&mesh_core::solver::to_faer(&k)?)?;
+        let k = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
+        let chol = BlockCholesky::new(&mesh_kernel::solver::to_faer(&k)?)?;
         let mut rows = Vec::with_capacity(c.massive);
         let coords = chol
             .permutation()

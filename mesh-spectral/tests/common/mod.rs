@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use mesh_core::operators::{self, MassKind};
-use mesh_core::TriMesh;
+use mesh_kernel::operators::{self, MassKind};
+use mesh_kernel::TriMesh;
 use mesh_spectral::Eigenpairs;
 use sprs::CsMat;
 

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use mesh_core::{glam::DVec3, shapes, TriMesh};
+use mesh_kernel::{glam::DVec3, shapes, TriMesh};
 use mesh_wavelet::{subdivide, Scheme};
 
 /// The shared real meshes, or `None` (with a message) when absent.

@@ -1,10 +1,10 @@
-//! mesh-core and mesh-io operations.
+//! mesh-kernel and mesh-io operations.
 
 use std::path::Path;
 
-use mesh_core::geometry::{self, NormalWeighting};
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_core::TriMesh;
+use mesh_kernel::geometry::{self, NormalWeighting};
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::TriMesh;
 use mesh_io::MeshData;
 
 use super::Operation;

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use mesh_core::VertexId;
+use mesh_kernel::VertexId;
 use mesh_geodesic::{
     dijkstra, exact_distance, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, HeatGeodesics, HeatOptions,
 };

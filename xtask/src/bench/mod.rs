@@ -108,9 +108,9 @@ pub fn run(args: &Args) -> Result<()> {
             if skipped || args.only.as_deref().is_some_and(|o| !op.name.contains(o)) {
                 continue;
             }
-            mesh_core::faer::set_global_parallelism(mesh_core::faer::Par::Seq);
+            mesh_kernel::faer::set_global_parallelism(mesh_kernel::faer::Par::Seq);
             let one = single.install(|| time(&mut op, args.runs));
-            mesh_core::faer::set_global_parallelism(mesh_core::faer::Par::rayon(0));
+            mesh_kernel::faer::set_global_parallelism(mesh_kernel::faer::Par::rayon(0));
             let all = time(&mut op, args.runs);
             let show = |r: &Result<f64>| match r {
                 Ok(ms) => format!("{ms:12.3}"),

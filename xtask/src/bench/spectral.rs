@@ -10,9 +10,9 @@
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
-use mesh_core::glam::DVec3;
-use mesh_core::operators::{self, MassKind};
-use mesh_core::TriMesh;
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::operators::{self, MassKind};
+use mesh_kernel::TriMesh;
 use mesh_io::MeshData;
 use mesh_spectral::{compress, eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
 

@@ -8,8 +8,8 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use mesh_core::glam::DVec3;
-use mesh_core::TriMesh;
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::TriMesh;
 use mesh_io::MeshData;
 use mesh_wavelet::{detect, subdivide, FilterBank, Scheme, WaveletKind};
 

@@ -7,8 +7,8 @@
 
 use std::time::Instant;
 
-use mesh_core::clean::CleanOptions;
-use mesh_core::TriMesh;
+use mesh_kernel::clean::CleanOptions;
+use mesh_kernel::TriMesh;
 use mesh_io::{Format, MeshData, ReadOptions};
 
 use super::{alloc, panics};

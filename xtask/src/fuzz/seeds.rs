@@ -1,4 +1,4 @@
-//! The valid files the fuzzer mutates: small meshes built from mesh-core's
+//! The valid files the fuzzer mutates: small meshes built from mesh-kernel's
 //! shapes, written by mesh-io's own writers in every format and variant
 //! (PLY ascii / binary little / binary big endian, float and double, with
 //! normals, texture coordinates, colours and a scalar; STL ascii and binary;
@@ -6,8 +6,8 @@
 //! features the writers never produce (polygons, negative OBJ indices,
 //! comments, extra PLY elements), and the shared test meshes under 20 KB.
 
-use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::{geometry, shapes, TriMesh};
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::{geometry, shapes, TriMesh};
 use mesh_io::{Format, MeshView, PlyEncoding, PlyOptions, StlEncoding, WriteOptions};
 
 use crate::validate::shared_data;

@@ -1,14 +1,14 @@
-//! mesh-core: topology of every shape, Gauss-Bonnet, area convergence,
+//! mesh-kernel: topology of every shape, Gauss-Bonnet, area convergence,
 //! Laplacian invariants, linear precision, intrinsic Delaunay.
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation};
-use mesh_core::{geometry, shapes, TriMesh, VertexKind};
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation};
+use mesh_kernel::{geometry, shapes, TriMesh, VertexKind};
 
 use super::{convergence_order, shared_data, Validator};
 
-/// Runs the mesh-core checks.
+/// Runs the mesh-kernel checks.
 pub fn run(v: &mut Validator) {
     shape_topology(v);
     shared_meshes(v);
@@ -21,7 +21,7 @@ pub fn run(v: &mut Validator) {
 
 /// Shapes with documented chi, genus and boundary loop counts.
 fn shape_topology(v: &mut Validator) {
-    let cases: Vec<(&str, mesh_core::Result<TriMesh>, i64, u64, usize)> = vec![
+    let cases: Vec<(&str, mesh_kernel::Result<TriMesh>, i64, u64, usize)> = vec![
         ("icosphere(4)", shapes::icosphere(4), 2, 0, 0),
         ("uv_sphere(32, 16)", shapes::uv_sphere(1.0, 32, 16), 2, 0, 0),
         ("torus(64, 16)", shapes::torus(2.0, 0.5, 64, 16), 0, 1, 0),
@@ -173,7 +173,7 @@ fn linear_precision(v: &mut Validator) {
     let worst = l
         .outer_iterator()
         .enumerate()
-        .filter(|(i, _)| !c.is_boundary_vertex(mesh_core::VertexId::new(*i)))
+        .filter(|(i, _)| !c.is_boundary_vertex(mesh_kernel::VertexId::new(*i)))
         .map(|(_, row)| row.iter().map(|(j, w)| w * x[j]).sum::<f64>().abs())
         .fold(0.0, f64::max);
     v.at_most("cotan Laplacian of a linear function on a planar disk (interior)", worst, 1e-12);

@@ -6,8 +6,8 @@
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, CurvatureTensor, Degree, FitOptions,
     GaussianOptions, MeanOptions, Method, Neighborhood, TensorOptions,
@@ -27,8 +27,8 @@ pub fn run(v: &mut Validator) {
 /// Exact curvature per vertex: (k1, k2, k1 direction if defined, checked).
 type Truth = Vec<(f64, f64, Option<DVec3>, bool)>;
 
-/// Torus R = 2, r = 0.5 with mesh-core's documented vertex parameters.
-fn torus(nu: usize, nv: usize) -> mesh_core::Result<(TriMesh, Truth)> {
+/// Torus R = 2, r = 0.5 with mesh-kernel's documented vertex parameters.
+fn torus(nu: usize, nv: usize) -> mesh_kernel::Result<(TriMesh, Truth)> {
     let m = shapes::torus(2.0, 0.5, nu, nv)?;
     let truth = (0..nu * nv)
         .map(|i| {
@@ -41,7 +41,7 @@ fn torus(nu: usize, nv: usize) -> mesh_core::Result<(TriMesh, Truth)> {
 }
 
 /// Unit cylinder of height 2; checked off the boundary rings.
-fn cylinder(around: usize, along: usize) -> mesh_core::Result<(TriMesh, Truth)> {
+fn cylinder(around: usize, along: usize) -> mesh_kernel::Result<(TriMesh, Truth)> {
     let m = shapes::cylinder(1.0, 2.0, around, along)?;
     let truth = (0..around * (along + 1))
         .map(|i| {
@@ -54,7 +54,7 @@ fn cylinder(around: usize, along: usize) -> mesh_core::Result<(TriMesh, Truth)> 
 
 /// Ellipsoid (1, 0.8, 0.6) from a scaled icosphere: irregular triangles,
 /// exact K and H.
-fn ellipsoid(level: u32) -> mesh_core::Result<(TriMesh, Truth)> {
+fn ellipsoid(level: u32) -> mesh_kernel::Result<(TriMesh, Truth)> {
     let (a, b, c) = (1.0, 0.8, 0.6);
     let s = shapes::icosphere(level)?;
     let p: Vec<DVec3> = s.positions().iter().map(|p| DVec3::new(a * p.x, b * p.y, c * p.z)).collect();
@@ -144,7 +144,7 @@ fn targets(v: &mut Validator) {
 }
 
 /// Errors at three refinements (mesh size halving) and their mean order.
-fn orders(v: &mut Validator, name: &str, errs: mesh_core::Result<Vec<f64>>, min_order: f64) {
+fn orders(v: &mut Validator, name: &str, errs: mesh_kernel::Result<Vec<f64>>, min_order: f64) {
     match errs {
         Ok(e) => v.at_least(
             format!("{name} order ({})", e.iter().map(|x| format!("{x:.1e}")).collect::<Vec<_>>().join(" ")),
@@ -160,11 +160,11 @@ fn orders(v: &mut Validator, name: &str, errs: mesh_core::Result<Vec<f64>>, min_
 /// regular grid; angle defect and cotangent formula: 2).
 fn convergence(v: &mut Validator) {
     let tori = [(64, 16), (128, 32), (256, 64)];
-    let torus_k = |method: Method, which: usize| -> mesh_core::Result<Vec<f64>> {
+    let torus_k = |method: Method, which: usize| -> mesh_kernel::Result<Vec<f64>> {
         tori.iter()
             .map(|&(nu, nv)| {
                 let (m, t) = torus(nu, nv)?;
-                let c = tensor(&m, method).map_err(|e| mesh_core::MeshError::Degenerate(e.to_string()))?;
+                let c = tensor(&m, method).map_err(|e| mesh_kernel::MeshError::Degenerate(e.to_string()))?;
                 Ok(errors(&c, &t)[which])
             })
             .collect()
@@ -183,25 +183,25 @@ fn convergence(v: &mut Validator) {
         refine_normal: false,
     });
     orders(v, "torus k1, quadric fit 1-ring (expected 2 on a regular grid)", torus_k(quadric, 0), 1.8);
-    let ellipsoid_k = |which: usize| -> mesh_core::Result<Vec<f64>> {
+    let ellipsoid_k = |which: usize| -> mesh_kernel::Result<Vec<f64>> {
         (3..=5)
             .map(|level| {
                 let (m, t) = ellipsoid(level)?;
-                let c = tensor(&m, Method::default()).map_err(|e| mesh_core::MeshError::Degenerate(e.to_string()))?;
+                let c = tensor(&m, Method::default()).map_err(|e| mesh_kernel::MeshError::Degenerate(e.to_string()))?;
                 Ok(errors(&c, &t)[which])
             })
             .collect()
     };
     orders(v, "ellipsoid (irregular) k1, quartic fit (expected 3)", ellipsoid_k(0), 2.7);
     orders(v, "ellipsoid (irregular) k2, quartic fit (expected 3)", ellipsoid_k(1), 2.7);
-    let pointwise = |gaussian: bool| -> mesh_core::Result<Vec<f64>> {
+    let pointwise = |gaussian: bool| -> mesh_kernel::Result<Vec<f64>> {
         tori.iter()
             .map(|&(nu, nv)| {
                 let (m, t) = torus(nu, nv)?;
                 let err = |x: &[f64], f: &dyn Fn(f64, f64) -> f64| {
                     x.iter().zip(&t).map(|(x, (k1, k2, _, _))| (x - f(*k1, *k2)).abs()).fold(0.0, f64::max)
                 };
-                let to_mesh = |e: mesh_curvature::CurvatureError| mesh_core::MeshError::Degenerate(e.to_string());
+                let to_mesh = |e: mesh_curvature::CurvatureError| mesh_kernel::MeshError::Degenerate(e.to_string());
                 Ok(if gaussian {
                     err(&gaussian_curvature(&m, &GaussianOptions::default()).map_err(to_mesh)?.pointwise, &|a, b| a * b)
                 } else {

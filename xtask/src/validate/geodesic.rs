@@ -6,7 +6,7 @@
 
 use std::f64::consts::PI;
 
-use mesh_core::{shapes, TriMesh, VertexId};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
     dijkstra, exact_distance, fmm_distance, heat_distance, trace_path, ExactOptions, FmmOptions, FmmUpdate,
     GeodesicError, HeatGeodesics, HeatOptions, SurfacePoint, TraceOptions,
@@ -164,7 +164,7 @@ fn metric_invariants(v: &mut Validator) {
         for (i, p) in m.positions_mut().iter_mut().enumerate() {
             *p *= 1.0 + 0.15 * ((i as f64) * 12.9898).sin();
         }
-        let h = mesh_core::geometry::mean_edge_length(&m);
+        let h = mesh_kernel::geometry::mean_edge_length(&m);
         let verts: Vec<VertexId> = (0..m.vertex_count()).step_by(29).map(VertexId::new).collect();
         let heat = HeatGeodesics::new(&m, &HeatOptions::default()).map_err(|e| e.to_string())?;
         let fmm = mesh_geodesic::FastMarching::new(&m, &FmmOptions::default()).map_err(|e| e.to_string())?;

@@ -8,7 +8,7 @@
 
 use std::f64::consts::PI;
 
-use mesh_core::{VertexId, VertexKind};
+use mesh_kernel::{VertexId, VertexKind};
 use mesh_curvature::{curvature_tensor, TensorOptions};
 use mesh_nurbs::basis::basis_values;
 use mesh_nurbs::glam::DVec3;
@@ -141,7 +141,7 @@ fn sphere_area(v: &mut Validator) {
             .iter()
             .map(|&n| {
                 let t = tessellate(&s, &GridOptions { segments_u: 2 * n, segments_v: n, ..Default::default() })?;
-                Ok((mesh_core::geometry::surface_area(&t.mesh) - 4.0 * PI).abs())
+                Ok((mesh_kernel::geometry::surface_area(&t.mesh) - 4.0 * PI).abs())
             })
             .collect()
     })();

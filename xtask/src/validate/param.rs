@@ -7,8 +7,8 @@
 //! stereographic projection; bijective Tutte and conformal maps of every
 //! shared mesh (cut to a disk when needed); finite UVs on zero-area faces.
 
-use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options, ParamError};
 
 use super::{convergence_order, shared_data, Validator};
@@ -56,7 +56,7 @@ fn similarity_residual(a: &[DVec2], b: &[DVec2]) -> f64 {
 }
 
 /// A planar irregular disk (unit disk, jittered interior, some obtuse faces).
-fn planar_disk(rings: usize) -> mesh_core::Result<TriMesh> {
+fn planar_disk(rings: usize) -> mesh_kernel::Result<TriMesh> {
     shapes::disk(rings, 3)
 }
 

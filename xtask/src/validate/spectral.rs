@@ -4,8 +4,8 @@
 //! refinement, residuals and M-orthonormality of the pairs, compression
 //! error monotone in the number of kept coefficients.
 
-use mesh_core::operators::{self, MassKind};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::operators::{self, MassKind};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{compression_curve, eigenpairs, Eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
 
 use super::{convergence_order, shared_data, Validator};

@@ -7,9 +7,9 @@
 //! `f64` there (degree -1, 0 or 1). Volumes (`s^3`, outside the range of
 //! `f64` at these scales) are left out.
 
-use mesh_core::clean::{clean, CleanOptions};
-use mesh_core::glam::{DVec2, DVec3};
-use mesh_core::{geometry, shapes, TriMesh, VertexId};
+use mesh_kernel::clean::{clean, CleanOptions};
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::{geometry, shapes, TriMesh, VertexId};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, mean_curvature, pointwise_curvature, PointwiseOptions, TensorOptions,
 };
@@ -35,7 +35,7 @@ const LIMIT: f64 = 1e-9;
 type Operation = (&'static str, i32, fn(&TriMesh) -> Result<Vec<f64>, String>);
 
 /// A mesh, how to build it, and what to run on it.
-type TestMesh = (&'static str, fn() -> mesh_core::Result<TriMesh>, &'static [Operation]);
+type TestMesh = (&'static str, fn() -> mesh_kernel::Result<TriMesh>, &'static [Operation]);
 
 /// Operations whose results are made of quantities of degree 2 (the
 /// eigenvectors are normalized by the vertex areas): not representable at
@@ -77,7 +77,7 @@ pub fn run(v: &mut Validator) {
 }
 
 /// `mesh` with every coordinate multiplied by `s`.
-fn scaled(mesh: &TriMesh, s: f64) -> mesh_core::Result<TriMesh> {
+fn scaled(mesh: &TriMesh, s: f64) -> mesh_kernel::Result<TriMesh> {
     TriMesh::new(mesh.positions().iter().map(|p| *p * s).collect(), mesh.faces().to_vec())
 }
 
@@ -96,13 +96,13 @@ fn relative_difference(a: &[f64], b: &[f64], unit: f64) -> f64 {
     }
 }
 
-fn torus() -> mesh_core::Result<TriMesh> {
+fn torus() -> mesh_kernel::Result<TriMesh> {
     shapes::irregular_torus(1.0, 0.4, 24, 12, 0.2, 7)
 }
 
 /// A unit icosphere with a duplicate face, a zero-area face, a pair of
 /// coincident vertices and an unreferenced vertex.
-fn dirty_sphere() -> mesh_core::Result<TriMesh> {
+fn dirty_sphere() -> mesh_kernel::Result<TriMesh> {
     let sphere = shapes::icosphere(2)?;
     let (mut p, mut f) = sphere.into_parts();
     let n = p.len() as u32;
@@ -116,7 +116,7 @@ fn dirty_sphere() -> mesh_core::Result<TriMesh> {
 }
 
 /// A paraboloid cap over an irregular disk: a curved mesh with one boundary.
-fn curved_disk() -> mesh_core::Result<TriMesh> {
+fn curved_disk() -> mesh_kernel::Result<TriMesh> {
     let disk = shapes::disk(8, 3)?;
     let (p, f) = disk.into_parts();
     TriMesh::new(p.into_iter().map(|q| DVec3::new(q.x, q.y, 0.4 * (q.x * q.x + q.y * q.y))).collect(), f)
@@ -129,7 +129,7 @@ const CLOSED: &[Operation] = &[
     ("vertex normals", 0, |m| {
         Ok(geometry::vertex_normals(m, geometry::NormalWeighting::Area).iter().flat_map(|n| n.to_array()).collect())
     }),
-    ("cotan Laplacian", 0, |m| Ok(mesh_core::operators::cotan_laplacian(m).data().to_vec())),
+    ("cotan Laplacian", 0, |m| Ok(mesh_kernel::operators::cotan_laplacian(m).data().to_vec())),
     ("Gaussian curvature (angle defect)", -2, |m| {
         gaussian_curvature(m, &Default::default()).map(|k| k.pointwise).map_err(|e| e.to_string())
     }),
@@ -194,7 +194,7 @@ const DIRTY: &[Operation] = &[
             .map_err(|e| e.to_string())
     }),
     ("degenerate faces", 0, |m| {
-        Ok(mesh_core::clean::degenerate_faces(m, 1e-12).iter().map(|f| f.idx() as f64).collect())
+        Ok(mesh_kernel::clean::degenerate_faces(m, 1e-12).iter().map(|f| f.idx() as f64).collect())
     }),
     ("manifold report", 0, |m| {
         let c = m.connectivity();
@@ -208,7 +208,7 @@ const DIRTY: &[Operation] = &[
 ];
 
 /// Counts that describe a cleaning: vertices and faces left, and the report.
-fn counts(mesh: &TriMesh, r: &mesh_core::clean::CleanReport) -> Vec<f64> {
+fn counts(mesh: &TriMesh, r: &mesh_kernel::clean::CleanReport) -> Vec<f64> {
     [mesh.vertex_count(), mesh.face_count()].into_iter().chain(r.counts()).map(|x| x as f64).collect()
 }
 

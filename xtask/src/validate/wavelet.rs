@@ -7,8 +7,8 @@
 
 use std::f64::consts::TAU;
 
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use mesh_wavelet::rules::loop_beta;
 use mesh_wavelet::{
     decay_rate, detect, inner_product_matrix, subdivide, FilterBank, Hierarchy, Multiresolution, Options, Scheme,
@@ -40,7 +40,7 @@ fn max_distance(a: &TriMesh, b: &TriMesh) -> f64 {
 }
 
 fn diagonal(m: &TriMesh) -> f64 {
-    mesh_core::geometry::bounding_box(m).map_or(1.0, |b| b.diagonal())
+    mesh_kernel::geometry::bounding_box(m).map_or(1.0, |b| b.diagonal())
 }
 
 /// A torus base mesh split `levels` times, projected onto the exact torus.
@@ -277,7 +277,7 @@ fn loop_limit(v: &mut Validator) {
     let run = || -> Result<(f64, f64), WaveletError> {
         let ico = shapes::icosphere(0)?;
         let c = ico.connectivity();
-        let v0 = mesh_core::VertexId(0);
+        let v0 = mesh_kernel::VertexId(0);
         let n = c.valence(v0);
         let w = 1.0 / (n as f64 + 3.0 / (8.0 * loop_beta(n)));
         let sum: DVec3 = c.neighbors(v0).map(|u| ico.position(u)).sum();

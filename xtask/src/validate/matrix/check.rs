@@ -80,12 +80,12 @@ impl Out {
 }
 
 /// Flattens points into coordinates.
-pub fn xyz(points: &[mesh_core::glam::DVec3]) -> Vec<f64> {
+pub fn xyz(points: &[mesh_kernel::glam::DVec3]) -> Vec<f64> {
     points.iter().flat_map(|p| p.to_array()).collect()
 }
 
 /// Flattens 2D points into coordinates.
-pub fn uv(points: &[mesh_core::glam::DVec2]) -> Vec<f64> {
+pub fn uv(points: &[mesh_kernel::glam::DVec2]) -> Vec<f64> {
     points.iter().flat_map(|p| p.to_array()).collect()
 }
 
@@ -116,7 +116,7 @@ pub fn representable(reference: &Out, scale: f64) -> bool {
 
 /// Distance between two points without overflow or underflow of the
 /// squares (the difference is scaled by its largest component first).
-pub fn distance(a: mesh_core::glam::DVec3, b: mesh_core::glam::DVec3) -> f64 {
+pub fn distance(a: mesh_kernel::glam::DVec3, b: mesh_kernel::glam::DVec3) -> f64 {
     let d = a - b;
     let k = d.abs().max_element();
     if k == 0.0 || !k.is_finite() {

@@ -4,7 +4,7 @@
 
 use std::time::Instant;
 
-use mesh_core::shapes;
+use mesh_kernel::shapes;
 use mesh_io::{Format, ReadOptions, WriteOptions};
 
 use crate::fuzz::{alloc, panics};

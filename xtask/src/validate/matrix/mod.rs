@@ -24,9 +24,9 @@ mod ops_core;
 use std::sync::{mpsc, Arc};
 use std::time::{Duration, Instant};
 
-use mesh_core::clean::CleanOptions;
-use mesh_core::glam::DVec3;
-use mesh_core::{MeshError, TriMesh};
+use mesh_kernel::clean::CleanOptions;
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{MeshError, TriMesh};
 
 use super::Validator;
 use crate::fuzz::panics;
@@ -126,7 +126,7 @@ fn construction(v: &mut Validator) {
         matches!(nan, Err(MeshError::NonFinitePosition { vertex, .. }) if vertex.idx() == 2),
         format!("{:?}", nan.err()),
     );
-    let cleaned = mesh_core::clean::clean(p, vec![[0, 1, 2]], &CleanOptions::default());
+    let cleaned = mesh_kernel::clean::clean(p, vec![[0, 1, 2]], &CleanOptions::default());
     v.holds(
         "NaN coordinate: clean refuses with NonFinitePosition",
         matches!(cleaned, Err(MeshError::NonFinitePosition { .. })),
@@ -139,7 +139,7 @@ fn construction(v: &mut Validator) {
         matches!(out, Err(MeshError::IndexOutOfRange { face, vertex: 3, vertex_count: 3 }) if face.idx() == 1),
         format!("{:?}", out.err()),
     );
-    let cleaned = mesh_core::clean::clean(p, vec![[0, 1, u32::MAX]], &CleanOptions::default());
+    let cleaned = mesh_kernel::clean::clean(p, vec![[0, 1, u32::MAX]], &CleanOptions::default());
     v.holds(
         "index out of range: clean refuses with IndexOutOfRange",
         matches!(cleaned, Err(MeshError::IndexOutOfRange { .. })),

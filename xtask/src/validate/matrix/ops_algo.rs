@@ -7,7 +7,7 @@
 
 use std::f64::consts::TAU;
 
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::{TriMesh, VertexId};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, pointwise_curvature, Method as Estimator,
     Neighborhood, TensorOptions,
@@ -259,7 +259,7 @@ fn subdivision(m: &TriMesh, scheme: Scheme) -> Result<Out, String> {
 fn wavelet(m: &TriMesh) -> Result<Out, String> {
     let mr = Multiresolution::analyze(m, &Default::default()).map_err(e)?;
     let back = mr.synthesize().map_err(e)?;
-    let size = mesh_core::geometry::bounding_box(m).map_or(0.0, |b| b.diagonal());
+    let size = mesh_kernel::geometry::bounding_box(m).map_or(0.0, |b| b.diagonal());
     let worst =
         m.positions().iter().zip(back.positions()).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f64::max);
     Ok(Out::default()

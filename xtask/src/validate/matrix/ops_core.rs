@@ -1,19 +1,19 @@
-//! Columns of the matrix for mesh-core (connectivity, geometry, operators,
+//! Columns of the matrix for mesh-kernel (connectivity, geometry, operators,
 //! clean, submesh) and mesh-io (a write and read round trip per format and
 //! variant).
 
 use std::f64::consts::PI;
 
-use mesh_core::clean::CleanOptions;
-use mesh_core::geometry::{self, NormalWeighting};
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_core::TriMesh;
+use mesh_kernel::clean::CleanOptions;
+use mesh_kernel::geometry::{self, NormalWeighting};
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::TriMesh;
 use mesh_io::{Format, PlyEncoding, PlyOptions, ReadOptions, StlEncoding, WriteOptions};
 
 use super::check::{xyz, Out};
 use super::Op;
 
-/// The mesh-core and mesh-io columns.
+/// The mesh-kernel and mesh-io columns.
 pub const OPS: &[Op] = &[
     ("core", "connectivity", connectivity),
     ("core", "geometry", geometry_op),
@@ -98,7 +98,7 @@ fn geometry_op(m: &TriMesh) -> Result<Out, String> {
 }
 
 /// Largest |entry|, asymmetry and row sum of a Laplacian, relative.
-fn laplacian_defect(l: &mesh_core::sprs::CsMat<f64>) -> Option<String> {
+fn laplacian_defect(l: &mesh_kernel::sprs::CsMat<f64>) -> Option<String> {
     let max = l.data().iter().fold(0.0f64, |a, x| a.max(x.abs()));
     let t = l.transpose_view().to_csr();
     let asym = (l - &t).data().iter().fold(0.0f64, |a, x| a.max(x.abs()));
@@ -147,9 +147,9 @@ fn clean_with(m: &TriMesh, options: &CleanOptions) -> Result<(TriMesh, Out), Str
 /// Default cleaning: nothing degenerate, duplicated or unreferenced is left.
 fn clean_default(m: &TriMesh) -> Result<Out, String> {
     let (c, out) = clean_with(m, &CleanOptions::default())?;
-    let degenerate = mesh_core::clean::degenerate_faces(&c, CleanOptions::default().degenerate_tolerance).len();
-    let duplicates = mesh_core::clean::duplicate_faces(c.faces()).len();
-    let unused = mesh_core::clean::unreferenced_vertices(c.vertex_count(), c.faces()).len();
+    let degenerate = mesh_kernel::clean::degenerate_faces(&c, CleanOptions::default().degenerate_tolerance).len();
+    let duplicates = mesh_kernel::clean::duplicate_faces(c.faces()).len();
+    let unused = mesh_kernel::clean::unreferenced_vertices(c.vertex_count(), c.faces()).len();
     Ok(out.require(degenerate + duplicates + unused == 0, || {
         format!("left {degenerate} degenerate, {duplicates} duplicate faces, {unused} unreferenced vertices")
     }))
@@ -197,7 +197,7 @@ fn round_trip(m: &TriMesh, format: Format, options: WriteOptions) -> Result<Out,
         || (format == Format::Ply && !options.ply.double);
     let tolerance = if single { 2f64.powi(-23) } else { 0.0 };
     let close = |a: f64, b: f64| (a - b).abs() <= tolerance * a.abs().max(b.abs());
-    let same_point = |p: mesh_core::glam::DVec3, q: mesh_core::glam::DVec3| (0..3).all(|k| close(p[k], q[k]));
+    let same_point = |p: mesh_kernel::glam::DVec3, q: mesh_kernel::glam::DVec3| (0..3).all(|k| close(p[k], q[k]));
     let b = &back.mesh;
     let problem = if b.face_count() != m.face_count() {
         Some(format!("{} faces back of {} (read report: {})", b.face_count(), m.face_count(), back.report))

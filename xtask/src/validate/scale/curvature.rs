@@ -7,7 +7,7 @@
 use std::f64::consts::TAU;
 use std::time::Instant;
 
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use mesh_curvature::{pointwise_curvature, CurvatureFlag, FlagCounts, PointwiseCurvature, PointwiseOptions};
 
 use super::{irregular_torus, ScaleMeshes};
@@ -27,7 +27,7 @@ pub fn run(v: &mut Validator, meshes: &ScaleMeshes) {
 /// Exact (K, H) of the torus R = 2, r = 0.5 at a point, outward normals:
 /// with the tube angle v = atan2(z, |(x, y)| - R), K = cos v / (r (R + r
 /// cos v)) and H = (1 / r + cos v / (R + r cos v)) / 2.
-fn torus_truth(p: mesh_core::glam::DVec3) -> (f64, f64) {
+fn torus_truth(p: mesh_kernel::glam::DVec3) -> (f64, f64) {
     let (big, r) = (2.0, 0.5);
     let v = p.z.atan2(p.x.hypot(p.y) - big);
     let along = v.cos() / (big + r * v.cos());

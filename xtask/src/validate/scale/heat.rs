@@ -12,7 +12,7 @@
 //! Loop-subdivided twice (29,394 vertices) and must be ten times below the
 //! target for the comparison to mean anything.
 
-use mesh_core::{TriMesh, VertexId};
+use mesh_kernel::{TriMesh, VertexId};
 use mesh_geodesic::{exact_distance, fmm_distance, ExactOptions, FmmOptions, HeatGeodesics, HeatOptions, HeatStatus};
 use mesh_wavelet::Scheme;
 

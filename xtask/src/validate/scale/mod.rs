@@ -19,7 +19,7 @@ use std::cell::OnceCell;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::{shapes, TriMesh};
 use mesh_wavelet::Scheme;
 
 use super::{shared_data, Validator};

@@ -11,9 +11,9 @@
 
 use std::time::Instant;
 
-use mesh_core::clean::CleanOptions;
-use mesh_core::glam::DVec2;
-use mesh_core::TriMesh;
+use mesh_kernel::clean::CleanOptions;
+use mesh_kernel::glam::DVec2;
+use mesh_kernel::TriMesh;
 use mesh_param::{atlas, Atlas, AtlasOptions, Method, UvRect};
 
 use super::{ScaleMeshes, Validator};

@@ -16,7 +16,7 @@
 //! (`eigsh(L, k=20, M=M, sigma=shift, which="LM")`, the shift ours);
 //! the mesh-spectral README gives the commands and timings.
 
-use mesh_core::TriMesh;
+use mesh_kernel::TriMesh;
 use mesh_spectral::{ComponentSelection, Eigenpairs, HarmonicsOptions, LaplacianKind, ManifoldHarmonics};
 
 use super::ScaleMeshes;

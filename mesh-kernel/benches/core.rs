@@ -6,9 +6,9 @@ use std::path::Path;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use mesh_core::geometry::{self, NormalWeighting};
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::geometry::{self, NormalWeighting};
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::{shapes, TriMesh};
 
 /// Meshes from about 1e3 to 1e6 vertices: icospheres (closed) and a torus.
 fn meshes() -> Vec<(String, TriMesh)> {
@@ -88,7 +88,7 @@ fn bench_shared(c: &mut Criterion) {
     group.finish();
 }
 
-/// A minimal OFF reader for the bench (mesh-io depends on mesh-core, not the
+/// A minimal OFF reader for the bench (mesh-io depends on mesh-kernel, not the
 /// other way round).
 fn parse_off(text: &str) -> Option<TriMesh> {
     let mut tokens = text.split_whitespace().filter(|t| *t != "OFF");
@@ -96,7 +96,7 @@ fn parse_off(text: &str) -> Option<TriMesh> {
     let (nv, nf) = (next()? as usize, next()? as usize);
     next()?;
     let positions =
-        (0..nv).map(|_| Some(mesh_core::glam::DVec3::new(next()?, next()?, next()?))).collect::<Option<Vec<_>>>()?;
+        (0..nv).map(|_| Some(mesh_kernel::glam::DVec3::new(next()?, next()?, next()?))).collect::<Option<Vec<_>>>()?;
     let faces = (0..nf)
         .map(|_| {
             let k = next()? as usize;

@@ -1,9 +1,9 @@
 //! `clean` with `manifold: true` turns any soup into an oriented manifold:
 //! fins, bow-ties, Moebius strips, random soups; geometry never moves.
 
-use mesh_core::clean::{clean, CleanOptions, CleanReport};
-use mesh_core::glam::DVec3;
-use mesh_core::{shapes, TriMesh};
+use mesh_kernel::clean::{clean, CleanOptions, CleanReport};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 use proptest::prelude::*;
 
 fn repair(positions: Vec<DVec3>, faces: Vec<[u32; 3]>) -> (TriMesh, CleanReport) {
@@ -29,7 +29,7 @@ fn a_fin_is_detached_and_the_sheet_kept() {
     assert_eq!(m.face_count(), 3);
     // The sheet stays glued: one edge with two faces, the fin has its own edge.
     let c = m.connectivity();
-    let interior = (0..c.edge_count()).filter(|&e| !c.is_boundary_edge(mesh_core::EdgeId::new(e))).count();
+    let interior = (0..c.edge_count()).filter(|&e| !c.is_boundary_edge(mesh_kernel::EdgeId::new(e))).count();
     assert_eq!(interior, 1);
     assert_eq!(c.components().count, 2);
     assert_eq!(r.split_vertices, 2);
@@ -62,7 +62,7 @@ fn a_bowtie_vertex_is_split() {
     let (m, r) = repair(p, vec![[0, 1, 2], [0, 3, 4]]);
     assert_eq!(r.split_vertices, 1);
     assert_eq!(m.vertex_count(), 6);
-    assert_eq!(m.position(mesh_core::VertexId(5)), DVec3::ZERO);
+    assert_eq!(m.position(mesh_kernel::VertexId(5)), DVec3::ZERO);
 }
 
 #[test]

@@ -1,10 +1,10 @@
 //! Property tests on random meshes: perturbed and randomly re-triangulated
 //! grids with holes, random triangle soups, subdivided shapes.
 
-use mesh_core::clean::{self, CleanOptions};
-use mesh_core::glam::DVec3;
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation};
-use mesh_core::{shapes, HalfedgeId, TriMesh, VertexId, VertexKind};
+use mesh_kernel::clean::{self, CleanOptions};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation};
+use mesh_kernel::{shapes, HalfedgeId, TriMesh, VertexId, VertexKind};
 use proptest::prelude::*;
 
 /// A planar grid of `nx` x `ny` cells, each split along a random diagonal,

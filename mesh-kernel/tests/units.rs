@@ -1,12 +1,12 @@
-//! The unit of length changes no answer: every quantity of mesh-core on a
+//! The unit of length changes no answer: every quantity of mesh-kernel on a
 //! mesh and on the same mesh scaled by `s` agrees (to 1e-12 relative) after
 //! dividing by `s^d`, `d` the quantity's degree in lengths, for `s` from
 //! 1e-150 to 1e150 (where every such quantity is representable).
 
-use mesh_core::clean::{clean, degenerate_faces, CleanOptions};
-use mesh_core::glam::DVec3;
-use mesh_core::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_core::{geometry, shapes, TriMesh};
+use mesh_kernel::clean::{clean, degenerate_faces, CleanOptions};
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::{geometry, shapes, TriMesh};
 
 const SCALES: [f64; 6] = [1e-150, 3.7e-90, 2e-20, 1.5e30, 6e99, 1e150];
 

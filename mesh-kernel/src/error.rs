@@ -3,7 +3,7 @@
 use crate::ids::{EdgeId, FaceId, VertexId};
 use thiserror::Error;
 
-/// Everything that can go wrong in `mesh-core`. Algorithm crates wrap it in their
+/// Everything that can go wrong in `mesh-kernel`. Algorithm crates wrap it in their
 /// own error enums.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]

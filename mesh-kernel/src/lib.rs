@@ -17,7 +17,7 @@
 //! | [`units`] | the unit of length: a mesh rescaled by a power of two so that no algorithm over- or underflows | |
 //!
 //! ```
-//! use mesh_core::{shapes, operators, solver::Cholesky};
+//! use mesh_kernel::{shapes, operators, solver::Cholesky};
 //!
 //! let mesh = shapes::icosphere(3)?;                 // 642 vertices on the unit sphere
 //! let c = mesh.connectivity();                      // built once, cached
@@ -31,7 +31,7 @@
 //! u[0] = m.get(0, 0).copied().unwrap_or(0.0);
 //! let u = Cholesky::new(&a)?.solve(&u)?;
 //! assert!(u.iter().all(|x| x.is_finite() && *x >= -1e-12));
-//! # Ok::<(), mesh_core::MeshError>(())
+//! # Ok::<(), mesh_kernel::MeshError>(())
 //! ```
 //!
 //! Features: `solver` (default) builds the faer solvers; `rayon` (default)
