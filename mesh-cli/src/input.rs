@@ -2,8 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
-use mesh_kernel::shapes;
 use mesh_io::MeshData;
+use mesh_kernel::shapes;
 
 use crate::output::CliResult;
 

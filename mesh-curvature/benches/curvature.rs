@@ -5,11 +5,11 @@
 //! `cargo bench -p mesh-curvature -- --warm-up-time 1 --measurement-time 3`
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, GaussianOptions, MeanOptions, Method,
     Neighborhood, TensorOptions,
 };
+use mesh_kernel::{shapes, TriMesh};
 
 fn meshes() -> Vec<(String, TriMesh)> {
     let mut out: Vec<(String, TriMesh)> = (3..=8)

@@ -4,9 +4,9 @@
 
 use std::f64::consts::TAU;
 
+use mesh_curvature::*;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_curvature::*;
 
 /// Per-vertex truth: k1, k2, and the k1 direction when it is defined.
 struct Truth {

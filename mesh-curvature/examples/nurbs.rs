@@ -4,8 +4,8 @@
 //! vertices against the exact per-vertex values, with the observed orders.
 //! Run with `cargo run --release -p mesh-curvature --example nurbs`.
 
-use mesh_kernel::{VertexId, VertexKind};
 use mesh_curvature::{curvature_tensor, TensorOptions};
+use mesh_kernel::{VertexId, VertexKind};
 use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{shapes, tessellate, GridOptions, NurbsSurface};
 

@@ -4,8 +4,8 @@
 
 use std::time::Instant;
 
-use mesh_kernel::shapes;
 use mesh_curvature::*;
+use mesh_kernel::shapes;
 
 /// CPU time of the calling thread in ns (`clock_gettime` with
 /// `CLOCK_THREAD_CPUTIME_ID`), which stays meaningful on a loaded machine

@@ -5,9 +5,9 @@ mod common;
 
 use std::f64::consts::{PI, TAU};
 
+use mesh_curvature::{gaussian_curvature, AreaKind, GaussianOptions, VertexStatus};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_curvature::{gaussian_curvature, AreaKind, GaussianOptions, VertexStatus};
 use proptest::prelude::*;
 
 fn gauss_bonnet_gap(mesh: &TriMesh) -> f64 {

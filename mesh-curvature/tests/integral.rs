@@ -4,11 +4,11 @@ mod common;
 
 use std::f64::consts::PI;
 
-use mesh_kernel::shapes;
 use mesh_curvature::{
     curvature_tensor, curvedness, gaussian_curvature, integral_curvature, shape_index, CurvatureError, GaussianOptions,
     Neighborhood, TensorOptions,
 };
+use mesh_kernel::shapes;
 
 #[test]
 fn a_ball_covering_everything_integrates_the_whole_surface() {

@@ -3,9 +3,9 @@
 
 mod common;
 
+use mesh_curvature::{mean_curvature, MeanOptions, Normals, VertexStatus};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_curvature::{mean_curvature, MeanOptions, Normals, VertexStatus};
 
 #[test]
 fn unit_sphere_has_mean_curvature_one() {

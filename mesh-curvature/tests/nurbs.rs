@@ -10,8 +10,8 @@
 //! (64 x 16 to 256 x 64 grids), without converging. The conditioning test
 //! of the fit now sends such vertices to the 3-ring.
 
-use mesh_kernel::{VertexId, VertexKind};
 use mesh_curvature::{curvature_tensor, TensorOptions};
+use mesh_kernel::{VertexId, VertexKind};
 use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{shapes, tessellate, GridOptions, NurbsSurface};
 

@@ -7,9 +7,9 @@ mod common;
 
 use std::f64::consts::TAU;
 
+use mesh_curvature::*;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_curvature::*;
 use proptest::prelude::*;
 
 fn pointwise(mesh: &TriMesh) -> PointwiseCurvature {

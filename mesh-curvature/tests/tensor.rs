@@ -4,12 +4,12 @@
 mod common;
 
 use common::{errors, order};
-use mesh_kernel::glam::{DMat3, DVec3};
-use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{
     curvature_tensor, CurvatureError, CurvatureTensor, Degree, FitOptions, Method, Neighborhood, Normals,
     TensorOptions, VertexStatus,
 };
+use mesh_kernel::glam::{DMat3, DVec3};
+use mesh_kernel::{shapes, TriMesh};
 use proptest::prelude::*;
 
 fn tensor(mesh: &TriMesh, method: Method) -> CurvatureTensor {

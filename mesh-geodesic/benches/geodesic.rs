@@ -7,11 +7,11 @@
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
     dijkstra, exact_distance, farthest_point_sampling, trace_path, DijkstraOptions, FastMarching, FmmOptions,
     FmmUpdate, HeatGeodesics, HeatLaplacian, HeatOptions, SamplingOptions, SurfacePoint, TraceOptions,
 };
+use mesh_kernel::{shapes, TriMesh, VertexId};
 
 const LEVELS: [u32; 6] = [3, 4, 5, 6, 7, 8];
 

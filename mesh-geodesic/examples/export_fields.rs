@@ -10,8 +10,8 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, exact_distance, heat_distance, FastMarching, FmmOptions, FmmUpdate, HeatOptions};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 

@@ -3,8 +3,8 @@
 
 mod common;
 
-use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, DijkstraOptions, GeodesicError};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 
 /// Bellman-Ford over the edge list: the reference shortest edge paths.
 fn bellman_ford(mesh: &TriMesh, sources: &[VertexId]) -> Vec<f64> {

@@ -5,9 +5,9 @@
 
 mod common;
 
+use mesh_geodesic::{dijkstra, exact_distance, fmm_distance, ExactOptions, GeodesicError};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, MeshError, TriMesh, VertexId};
-use mesh_geodesic::{dijkstra, exact_distance, fmm_distance, ExactOptions, GeodesicError};
 use proptest::prelude::*;
 
 fn exact(mesh: &TriMesh, sources: &[VertexId]) -> Vec<f64> {

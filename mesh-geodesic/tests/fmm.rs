@@ -6,8 +6,8 @@ mod common;
 
 use std::f64::consts::PI;
 
-use mesh_kernel::{shapes, VertexId};
 use mesh_geodesic::{fmm_distance, FastMarching, FmmOptions, FmmUpdate, GeodesicError};
+use mesh_kernel::{shapes, VertexId};
 
 fn opts(update: FmmUpdate) -> FmmOptions {
     FmmOptions { update, ..Default::default() }

@@ -3,9 +3,9 @@
 
 mod common;
 
+use mesh_geodesic::{heat_distance, GeodesicError, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh, VertexId};
-use mesh_geodesic::{heat_distance, GeodesicError, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
 
 fn with(laplacian: HeatLaplacian) -> HeatOptions {
     HeatOptions { laplacian, ..Default::default() }

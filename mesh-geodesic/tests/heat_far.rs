@@ -5,9 +5,9 @@
 //! work: max |heat - exact| <= 2% and median <= 0.5% of the largest
 //! distance, whatever the number of edge lengths spanned, and no plateau.
 
+use mesh_geodesic::{HeatDistance, HeatFarField, HeatGeodesics, HeatOptions, HeatStatus};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh, VertexId};
-use mesh_geodesic::{HeatDistance, HeatFarField, HeatGeodesics, HeatOptions, HeatStatus};
 
 /// Max and median of |d - truth| over the largest truth, and the fraction
 /// of vertices within 1% of the field's own maximum (the plateau).

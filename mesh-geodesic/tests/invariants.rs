@@ -4,8 +4,8 @@
 //! (largest deviations seen on random meshes: fast marching 0.61 h, heat
 //! method 0.73 h).
 
-use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{dijkstra, fmm_distance, FmmOptions, FmmUpdate, HeatOptions};
+use mesh_kernel::{shapes, TriMesh, VertexId};
 use proptest::prelude::*;
 
 /// An icosphere with every vertex pushed radially by up to `amplitude`, or

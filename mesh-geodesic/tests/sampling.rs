@@ -3,12 +3,12 @@
 
 mod common;
 
-use mesh_kernel::glam::DVec3;
-use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
     dijkstra, farthest_point_sampling, fmm_distance, geodesic_voronoi, FmmOptions, GeodesicError, SamplingMetric,
     SamplingOptions,
 };
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh, VertexId};
 
 fn metric(metric: SamplingMetric) -> SamplingOptions {
     SamplingOptions { metric, ..Default::default() }

@@ -3,11 +3,11 @@
 
 mod common;
 
-use mesh_kernel::{shapes, FaceId, TriMesh, VertexId};
 use mesh_geodesic::{
     fmm_distance, heat_distance, trace_path, FmmOptions, GeodesicError, GeodesicPath, HeatOptions, SurfacePoint,
     TraceOptions,
 };
+use mesh_kernel::{shapes, FaceId, TriMesh, VertexId};
 
 fn trace(mesh: &TriMesh, d: &[f64], sources: &[VertexId], from: SurfacePoint) -> GeodesicPath {
     trace_path(mesh, d, sources, from, &TraceOptions::default()).unwrap()

@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use mesh_io::{Format, MeshData, PlyEncoding, PlyOptions, StlEncoding, WriteOptions};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::TriMesh;
-use mesh_io::{Format, MeshData, PlyEncoding, PlyOptions, StlEncoding, WriteOptions};
 
 /// An `n x n` grid on a wavy surface; coordinates need all 17 digits.
 fn grid(n: u32) -> MeshData {

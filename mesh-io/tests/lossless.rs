@@ -4,9 +4,9 @@
 
 mod common;
 
+use mesh_io::{read, write, IoError, PlyOptions, StlEncoding, WriteOptions};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::TriMesh;
-use mesh_io::{read, write, IoError, PlyOptions, StlEncoding, WriteOptions};
 
 /// A 5 x 5 grid of 25 vertices and 32 faces, scaled by `s`.
 fn scaled_grid(s: f64) -> TriMesh {

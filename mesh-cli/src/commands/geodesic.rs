@@ -12,12 +12,12 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mesh_kernel::VertexId;
 use mesh_geodesic::{
     dijkstra, exact_distance, trace_path, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, FmmUpdate,
     HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus, SurfacePoint, TraceOptions,
 };
 use mesh_io::MeshView;
+use mesh_kernel::VertexId;
 use serde::Serialize;
 
 use crate::input::InputArgs;

@@ -12,9 +12,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use mesh_io::MeshView;
 use mesh_kernel::clean::CleanOptions;
 use mesh_kernel::TriMesh;
-use mesh_io::MeshView;
 use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSummary, Method, Spacing};
 use serde::Serialize;
 

@@ -12,9 +12,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use mesh_io::MeshView;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{geometry, operators, TriMesh, VertexId};
-use mesh_io::MeshView;
 use serde_json::{json, Map, Value};
 
 use super::info::Info;
@@ -177,10 +177,11 @@ fn input_warnings(report: &mut Report, mesh: &TriMesh, info: &Info, read: &mesh_
         report.warn(format!("reading the file changed it: {read}"));
     }
     if info.coincident_vertices > 0 {
-        let welded = mesh_kernel::clean::weld_vertices(mesh.positions(), mesh.faces(), 0.0).ok().map(|(p, mut f, _)| {
-            f.retain(|[a, b, c]| a != b && b != c && a != c);
-            mesh_kernel::connectivity::Connectivity::new(p.len(), &f).components().count
-        });
+        let welded =
+            mesh_kernel::clean::weld_vertices(mesh.positions(), mesh.faces(), 0.0).ok().map(|(p, mut f, _)| {
+                f.retain(|[a, b, c]| a != b && b != c && a != c);
+                mesh_kernel::connectivity::Connectivity::new(p.len(), &f).components().count
+            });
         let joined = match welded {
             Some(after) if after < info.components => {
                 format!("; welding them (`mesh clean`) joins the {} components into {after}", info.components)

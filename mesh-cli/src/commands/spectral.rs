@@ -17,8 +17,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mesh_kernel::TriMesh;
 use mesh_io::MeshView;
+use mesh_kernel::TriMesh;
 use mesh_spectral::{
     compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, CompressionError,
     HarmonicsOptions, LaplacianKind, LumpedMass, ManifoldHarmonics, Options, Transfer,

@@ -6,9 +6,9 @@
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 
+use mesh_curvature::CurvatureTensor;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_curvature::CurvatureTensor;
 
 /// Exact curvature per vertex: principal curvatures, the k1 direction where
 /// it is defined (not at umbilics), and which vertices to check.

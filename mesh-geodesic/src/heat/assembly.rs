@@ -21,10 +21,9 @@ pub(crate) fn heat_ceiling(a: &CsMat<f64>) -> f64 {
 /// mollification happened).
 pub(crate) fn unchanged_lengths(mesh: &TriMesh, lengths: &[f64]) -> bool {
     let p = mesh.positions();
-    mesh.faces()
-        .iter()
-        .zip(lengths.chunks_exact(3))
-        .all(|(f, l)| (0..3).all(|k| mesh_kernel::geometry::norm(p[f[(k + 1) % 3] as usize] - p[f[k] as usize]) == l[k]))
+    mesh.faces().iter().zip(lengths.chunks_exact(3)).all(|(f, l)| {
+        (0..3).all(|k| mesh_kernel::geometry::norm(p[f[(k + 1) % 3] as usize] - p[f[k] as usize]) == l[k])
+    })
 }
 
 /// `diag(mass) + t L` with 1 on the diagonal of isolated vertices. Same

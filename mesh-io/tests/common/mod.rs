@@ -1,9 +1,9 @@
 //! Shared test meshes.
 #![allow(dead_code)]
 
+use mesh_io::MeshData;
 use mesh_kernel::glam::{DVec2, DVec3};
 use mesh_kernel::TriMesh;
-use mesh_io::MeshData;
 
 /// An `n x n` vertex grid over `[0, 1]^2` with a bump in z, coordinates that
 /// are exact in `f32` (multiples of 1/64), and every attribute filled in

@@ -9,11 +9,11 @@ use std::time::Instant;
 
 use faer::{Mat, MatRef};
 
-use super::block_cholesky::LANES;
 use super::krylov::{self, BlockOperator, Config, Verdict};
 use super::problem::Component;
 use super::quality::{final_rayleigh_ritz, quality, rayleigh_quotients, Quality, Stiffness};
 use super::shift_invert::ShiftInvert;
+use super::shift_invert::LANES;
 use super::{dense, Method, Options, Stats};
 use crate::error::{Result, SpectralError};
 

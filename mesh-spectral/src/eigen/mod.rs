@@ -34,7 +34,6 @@
 //! Results are deterministic (seeded start block), eigenvalues ascending,
 //! eigenvectors M-orthonormal.
 
-mod block_cholesky;
 mod component;
 mod dense;
 mod krylov;

@@ -18,15 +18,22 @@ use std::borrow::Cow;
 use std::sync::Mutex;
 
 use faer::{Mat, MatRef};
+use mesh_kernel::solver::Cholesky;
 
-use super::block_cholesky::{BlockCholesky, Lane, LANES};
 use super::problem::Component;
 use crate::error::{Result, SpectralError};
+
+/// Right-hand sides per block solve: the width of one 512-bit vector of
+/// doubles (two AVX2 registers).
+pub(crate) const LANES: usize = 8;
+
+/// The values of one unknown for [`LANES`] right-hand sides.
+type Lane = [f64; LANES];
 
 /// A factored `K = L - sigma M` with the mass scaling.
 #[derive(Debug)]
 pub(crate) struct ShiftInvert {
-    chol: BlockCholesky,
+    chol: Cholesky,
     shift: f64,
     /// Per permuted unknown of `K`: its coordinate in `y` and `sqrt(mass)`,
     /// or `None` for a massless vertex.
@@ -45,10 +52,10 @@ impl ShiftInvert {
     /// `SpectralError::Mesh` (`MeshError::Solver`) when the shifted matrix cannot be factorized.
     pub fn new(c: &Component, shift: f64) -> Result<Self> {
         let k = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
-        let chol = BlockCholesky::new(&mesh_kernel::solver::to_faer(&k)?)?;
+        let chol = Cholesky::new(&k)?;
         let mut rows = Vec::with_capacity(c.massive);
         let coords = chol
-            .permutation()
+            .order()
             .iter()
             .map(|&row| {
                 let m = c.mass[row];
@@ -68,7 +75,7 @@ impl ShiftInvert {
 
     /// Stored values of the Cholesky factor.
     pub fn factor_nonzeros(&self) -> usize {
-        self.chol.nnz()
+        self.chol.factor_nonzeros()
     }
 
     /// Component row of each coordinate of `y` (the vertices with mass, in
@@ -86,11 +93,11 @@ impl ShiftInvert {
     /// (in parallel across lane groups with the `rayon` feature).
     ///
     /// # Errors
-    /// None at present: the triangular solves cannot fail once the factor exists.
+    /// `SpectralError::Mesh` (`MeshError::Dimension`) if a block does not match the factor.
     pub fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
         let mut groups = self.take_scratch(q.ncols());
         self.gather(q, |_| 1.0, &mut groups);
-        self.solve_groups(&mut groups);
+        self.solve_groups(&mut groups)?;
         for (g, lanes) in groups.iter().enumerate() {
             let cols = LANES.min(q.ncols() - g * LANES);
             let mut outs: Vec<&mut [f64]> = Vec::with_capacity(cols);
@@ -132,16 +139,18 @@ impl ShiftInvert {
         }
     }
 
-    fn solve_groups(&self, groups: &mut [Vec<Lane>]) {
+    /// Block solves of every group, in the factor's order.
+    fn solve_groups(&self, groups: &mut [Vec<Lane>]) -> Result<()> {
         #[cfg(feature = "rayon")]
         {
             use rayon::prelude::*;
-            groups.par_iter_mut().for_each(|g| self.chol.solve_lanes(g));
+            groups.par_iter_mut().try_for_each(|g| self.chol.solve_ordered_rows(g))?;
         }
         #[cfg(not(feature = "rayon"))]
         for g in groups.iter_mut() {
-            self.chol.solve_lanes(g);
+            self.chol.solve_ordered_rows(g)?;
         }
+        Ok(())
     }
 
     /// Fills `groups` with `M^1/2 q`, column j scaled by `scale(j)`, as
@@ -178,7 +187,7 @@ impl ShiftInvert {
             for (pi, coord) in self.coords.iter().enumerate() {
                 if let Some((i, s)) = *coord {
                     let row = self.rows[i];
-                    debug_assert_eq!(row, self.chol.permutation()[pi]);
+                    debug_assert_eq!(row, self.chol.order()[pi]);
                     for j in 0..u.ncols() {
                         x[(row, j)] = u[(i, j)] / s;
                     }
@@ -191,8 +200,8 @@ impl ShiftInvert {
         }
         let mut groups = self.take_scratch(y.ncols());
         self.gather(y, |j| 1.0 / theta[j], &mut groups);
-        self.solve_groups(&mut groups);
-        let perm = self.chol.permutation();
+        self.solve_groups(&mut groups)?;
+        let perm = self.chol.order();
         for (g, lanes) in groups.iter().enumerate() {
             for k in 0..LANES.min(y.ncols() - g * LANES) {
                 let out = x.col_as_slice_mut(g * LANES + k);

@@ -2,10 +2,10 @@
 
 use std::path::Path;
 
+use mesh_io::MeshData;
 use mesh_kernel::geometry::{self, NormalWeighting};
 use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
 use mesh_kernel::TriMesh;
-use mesh_io::MeshData;
 
 use super::Operation;
 

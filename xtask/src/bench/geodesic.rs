@@ -5,11 +5,11 @@
 
 use std::path::Path;
 
-use mesh_kernel::VertexId;
 use mesh_geodesic::{
     dijkstra, exact_distance, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, HeatGeodesics, HeatOptions,
 };
 use mesh_io::MeshData;
+use mesh_kernel::VertexId;
 
 use super::Operation;
 

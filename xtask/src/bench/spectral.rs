@@ -10,10 +10,10 @@
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
+use mesh_io::MeshData;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::TriMesh;
-use mesh_io::MeshData;
 use mesh_spectral::{compress, eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
 
 use super::Operation;

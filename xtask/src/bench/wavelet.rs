@@ -8,9 +8,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use mesh_io::MeshData;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::TriMesh;
-use mesh_io::MeshData;
 use mesh_wavelet::{detect, subdivide, FilterBank, Scheme, WaveletKind};
 
 use super::Operation;

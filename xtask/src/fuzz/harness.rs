@@ -7,9 +7,9 @@
 
 use std::time::Instant;
 
+use mesh_io::{Format, MeshData, ReadOptions};
 use mesh_kernel::clean::CleanOptions;
 use mesh_kernel::TriMesh;
-use mesh_io::{Format, MeshData, ReadOptions};
 
 use super::{alloc, panics};
 

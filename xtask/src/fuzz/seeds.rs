@@ -6,9 +6,9 @@
 //! features the writers never produce (polygons, negative OBJ indices,
 //! comments, extra PLY elements), and the shared test meshes under 20 KB.
 
+use mesh_io::{Format, MeshView, PlyEncoding, PlyOptions, StlEncoding, WriteOptions};
 use mesh_kernel::glam::{DVec2, DVec3};
 use mesh_kernel::{geometry, shapes, TriMesh};
-use mesh_io::{Format, MeshView, PlyEncoding, PlyOptions, StlEncoding, WriteOptions};
 
 use crate::validate::shared_data;
 

@@ -6,12 +6,12 @@
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_kernel::glam::DVec3;
-use mesh_kernel::{shapes, TriMesh};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, CurvatureTensor, Degree, FitOptions,
     GaussianOptions, MeanOptions, Method, Neighborhood, TensorOptions,
 };
+use mesh_kernel::glam::DVec3;
+use mesh_kernel::{shapes, TriMesh};
 
 use super::{convergence_order, shared_data, Validator};
 

@@ -6,11 +6,11 @@
 
 use std::f64::consts::PI;
 
-use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_geodesic::{
     dijkstra, exact_distance, fmm_distance, heat_distance, trace_path, ExactOptions, FmmOptions, FmmUpdate,
     GeodesicError, HeatGeodesics, HeatOptions, SurfacePoint, TraceOptions,
 };
+use mesh_kernel::{shapes, TriMesh, VertexId};
 
 use super::{convergence_order, shared_data, Validator};
 

@@ -8,8 +8,8 @@
 
 use std::f64::consts::PI;
 
-use mesh_kernel::{VertexId, VertexKind};
 use mesh_curvature::{curvature_tensor, TensorOptions};
+use mesh_kernel::{VertexId, VertexKind};
 use mesh_nurbs::basis::basis_values;
 use mesh_nurbs::glam::DVec3;
 use mesh_nurbs::{shapes, tessellate, GridOptions, KnotVector, NurbsSurface, SurfaceFrame};

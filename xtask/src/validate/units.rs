@@ -7,9 +7,6 @@
 //! `f64` there (degree -1, 0 or 1). Volumes (`s^3`, outside the range of
 //! `f64` at these scales) are left out.
 
-use mesh_kernel::clean::{clean, CleanOptions};
-use mesh_kernel::glam::{DVec2, DVec3};
-use mesh_kernel::{geometry, shapes, TriMesh, VertexId};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, mean_curvature, pointwise_curvature, PointwiseOptions, TensorOptions,
 };
@@ -17,6 +14,9 @@ use mesh_geodesic::{
     dijkstra, exact_distance, fmm_distance, DijkstraOptions, ExactOptions, FmmOptions, HeatGeodesics, HeatLaplacian,
     HeatOptions,
 };
+use mesh_kernel::clean::{clean, CleanOptions};
+use mesh_kernel::glam::{DVec2, DVec3};
+use mesh_kernel::{geometry, shapes, TriMesh, VertexId};
 use mesh_param::{parameterize, Method, Options as ParamOptions};
 use mesh_spectral::{HarmonicsOptions, ManifoldHarmonics};
 

@@ -4,8 +4,8 @@
 
 use std::time::Instant;
 
-use mesh_kernel::shapes;
 use mesh_io::{Format, ReadOptions, WriteOptions};
+use mesh_kernel::shapes;
 
 use crate::fuzz::{alloc, panics};
 use crate::validate::Validator;

@@ -7,7 +7,6 @@
 
 use std::f64::consts::TAU;
 
-use mesh_kernel::{TriMesh, VertexId};
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, pointwise_curvature, Method as Estimator,
     Neighborhood, TensorOptions,
@@ -16,6 +15,7 @@ use mesh_geodesic::{
     dijkstra, exact_distance, fmm_distance, heat_distance, trace_path, ExactOptions, FmmOptions, HeatOptions,
     SurfacePoint, TraceOptions,
 };
+use mesh_kernel::{TriMesh, VertexId};
 use mesh_param::{atlas, parameterize, parameterize_cut, AtlasOptions, Method, Options};
 use mesh_spectral::{
     compress, filter, heat_kernel_signature, hks_times, HarmonicsOptions, ManifoldHarmonics, Transfer,

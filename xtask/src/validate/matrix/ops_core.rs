@@ -4,11 +4,11 @@
 
 use std::f64::consts::PI;
 
+use mesh_io::{Format, PlyEncoding, PlyOptions, ReadOptions, StlEncoding, WriteOptions};
 use mesh_kernel::clean::CleanOptions;
 use mesh_kernel::geometry::{self, NormalWeighting};
 use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
 use mesh_kernel::TriMesh;
-use mesh_io::{Format, PlyEncoding, PlyOptions, ReadOptions, StlEncoding, WriteOptions};
 
 use super::check::{xyz, Out};
 use super::Op;

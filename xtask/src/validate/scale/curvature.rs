@@ -7,8 +7,8 @@
 use std::f64::consts::TAU;
 use std::time::Instant;
 
-use mesh_kernel::TriMesh;
 use mesh_curvature::{pointwise_curvature, CurvatureFlag, FlagCounts, PointwiseCurvature, PointwiseOptions};
+use mesh_kernel::TriMesh;
 
 use super::{irregular_torus, ScaleMeshes};
 use crate::validate::Validator;

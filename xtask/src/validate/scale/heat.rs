@@ -12,8 +12,8 @@
 //! Loop-subdivided twice (29,394 vertices) and must be ten times below the
 //! target for the comparison to mean anything.
 
-use mesh_kernel::{TriMesh, VertexId};
 use mesh_geodesic::{exact_distance, fmm_distance, ExactOptions, FmmOptions, HeatGeodesics, HeatOptions, HeatStatus};
+use mesh_kernel::{TriMesh, VertexId};
 use mesh_wavelet::Scheme;
 
 use super::{shared_data, strip, ScaleMeshes, Validator};
