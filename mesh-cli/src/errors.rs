@@ -1,7 +1,7 @@
 //! The one place where errors of the library crates are put in the terms of
 //! the command line: the flag the user typed (with its value), the file,
 //! the element, and what to do. Library messages stay as they are for Rust
-//! users; this layer rewrites only what names a Rust item (`HeatLaplacian::
+//! users; this layer rewrites only what names a Rust item (`LaplacianKind::
 //! IntrinsicDelaunay`) or an option (`boundary`, `pins`) that the user did
 //! not type.
 //!
@@ -148,8 +148,8 @@ pub fn geodesic(e: mesh_geodesic::GeodesicError, given: Given<'_>) -> CliError {
     match e {
         GeodesicError::Mesh(e) => core(e, given),
         GeodesicError::InvalidOption { name, reason } => option(name, &reason, given),
-        GeodesicError::Degenerate(text) if text.contains("HeatLaplacian::IntrinsicDelaunay") => {
-            let text = text.replace("; use HeatLaplacian::IntrinsicDelaunay", "");
+        GeodesicError::Degenerate(text) if text.contains("LaplacianKind::IntrinsicDelaunay") => {
+            let text = text.replace("; use LaplacianKind::IntrinsicDelaunay", "");
             let intrinsic = given.iter().any(|(n, typed)| *n == "laplacian" && typed.ends_with("intrinsic"));
             let what_to_do = if intrinsic {
                 "even with --laplacian intrinsic; remove them first with `mesh clean IN OUT`"

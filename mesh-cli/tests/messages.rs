@@ -22,7 +22,7 @@ fn contains_all(text: &str, phrases: &[&str]) {
     for p in phrases {
         assert!(text.contains(p), "missing {p:?} in: {text}");
     }
-    for rust in ["::", "HeatLaplacian", "DegeneratePolicy", "invalid option `"] {
+    for rust in ["::", "LaplacianKind", "DegeneratePolicy", "invalid option `"] {
         assert!(!text.contains(rust), "Rust terms {rust:?} in: {text}");
     }
 }

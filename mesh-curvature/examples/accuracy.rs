@@ -119,14 +119,14 @@ fn methods() -> Vec<(&'static str, TensorOptions)> {
     let fit = |rings, degree, use_normals, refine_normal| {
         Method::Fit(FitOptions { neighborhood: Neighborhood::Rings(rings), degree, use_normals, refine_normal })
     };
-    let with = |method| TensorOptions { method, normals: Normals::Max };
+    let with = |method| TensorOptions { method, normals: NormalWeighting::Max };
     vec![
         ("quartic fit, 2-ring (default)", TensorOptions::default()),
         ("cubic fit, 2-ring", with(fit(2, Degree::Cubic, false, true))),
         ("cubic + normals, 1-ring (G&I 2004)", with(fit(1, Degree::Cubic, true, false))),
         ("quadric fit, 1-ring (libigl-like)", with(fit(1, Degree::Quadric, false, false))),
         ("Rusinkiewicz, Max normals", with(Method::Rusinkiewicz)),
-        ("Rusinkiewicz, area normals", TensorOptions { method: Method::Rusinkiewicz, normals: Normals::Area }),
+        ("Rusinkiewicz, area normals", TensorOptions { method: Method::Rusinkiewicz, normals: NormalWeighting::Area }),
         ("normal cycle, 1-ring", with(Method::NormalCycle(Neighborhood::Rings(1)))),
         ("normal cycle, 2-ring", with(Method::NormalCycle(Neighborhood::Rings(2)))),
     ]

@@ -58,7 +58,7 @@ fn main() {
     best("mean", reps, &mut || drop(mean_curvature(&mesh, &Default::default()).unwrap()));
     let fit = |neighborhood, degree, use_normals, refine_normal| TensorOptions {
         method: Method::Fit(FitOptions { neighborhood, degree, use_normals, refine_normal }),
-        normals: Normals::Max,
+        normals: NormalWeighting::Max,
     };
     for (name, o) in [
         ("default", TensorOptions::default()),
@@ -77,5 +77,5 @@ fn main() {
     best("cotan_laplacian", reps, &mut || drop(mesh_kernel::operators::cotan_laplacian(&mesh)));
     let mixed = mesh_kernel::operators::MassKind::MixedVoronoi;
     best("lumped_mass", reps, &mut || drop(mesh_kernel::operators::lumped_mass(&mesh, mixed)));
-    best("normals max", reps, &mut || drop(normals::vertex_normals(&mesh, Normals::Max)));
+    best("normals max", reps, &mut || drop(mesh_kernel::geometry::vertex_normals(&mesh, NormalWeighting::Max)));
 }

@@ -25,10 +25,10 @@ use mesh_kernel::TriMesh;
 use crate::error::Result;
 use crate::frame::{solve_spd, tangent_basis, InverseBlock, Sym2};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
-use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
+use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
 
 /// Degree of the fitted height field.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -394,7 +394,7 @@ fn height_field_tensor(n: DVec3, t1: DVec3, t2: DVec3, g: [f64; 2], hess: Sym2) 
 /// neighbourhood grown by a ring (or 1.5x the radius), then with lower
 /// degrees; keeps the best-conditioned fit when none passes (flagged
 /// ill-conditioned), and flags the vertex degenerate when nothing fits. O(sum of neighbourhood sizes), parallel over vertices.
-pub(crate) fn estimate(mesh: &TriMesh, normals: Normals, options: &FitOptions) -> Result<Vec<LocalTensor>> {
+pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting, options: &FitOptions) -> Result<Vec<LocalTensor>> {
     let nbh = options.neighborhood.validate()?;
     let nv = vertex_normals(mesh, normals);
     let adj = Adjacency::new(mesh);

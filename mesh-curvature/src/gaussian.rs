@@ -6,16 +6,16 @@ use std::f64::consts::{PI, TAU};
 use glam::DVec3;
 use mesh_kernel::{TriMesh, VertexKind};
 
-use crate::area::{vertex_areas, AreaKind};
 use crate::error::Result;
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
+use mesh_kernel::operators::{lumped_mass, MassKind};
 
 /// Options of [`gaussian_curvature`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct GaussianOptions {
     /// The area that turns the integrated curvature into a pointwise one.
-    pub area: AreaKind,
+    pub area: MassKind,
 }
 
 /// Per-vertex Gaussian curvature by angle defect.
@@ -72,7 +72,7 @@ pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<G
 /// [`gaussian_curvature`] in the mesh's own unit.
 fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
     let conn = mesh.connectivity();
-    let (angles, area) = par::join(|| corner_angles(mesh), || vertex_areas(mesh, options.area));
+    let (angles, area) = par::join(|| corner_angles(mesh), || lumped_mass(mesh, options.area));
     let sums = par::map(mesh.vertex_count(), |i| {
         let v = mesh_kernel::VertexId::new(i);
         compensated_sum(conn.outgoing(v).iter().map(|h| angles[h.face().idx()][h.corner()]))

@@ -4,12 +4,12 @@
 
 use mesh_kernel::TriMesh;
 
-use crate::area::AreaKind;
 use crate::error::Result;
 use crate::gaussian::{gaussian_curvature, GaussianOptions};
 use crate::mean::{mean_curvature, MeanOptions};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
 use crate::par;
+use mesh_kernel::operators::MassKind;
 
 /// Curvature integrated over each vertex's neighbourhood.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,7 +60,7 @@ pub fn integral_curvature(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralC
 
 /// [`integral_curvature`] in the mesh's own unit.
 fn integrate(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralCurvature> {
-    let k = gaussian_curvature(mesh, &GaussianOptions { area: AreaKind::MixedVoronoi })?;
+    let k = gaussian_curvature(mesh, &GaussianOptions { area: MassKind::MixedVoronoi })?;
     let h = mean_curvature(mesh, &MeanOptions::default())?;
     let adj = Adjacency::new(mesh);
     let p = mesh.positions();

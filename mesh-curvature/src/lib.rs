@@ -37,7 +37,6 @@
 //! ```
 #![deny(missing_docs)]
 
-pub mod area;
 pub mod error;
 pub mod fit;
 mod frame;
@@ -46,21 +45,20 @@ pub mod integral;
 pub mod mean;
 pub mod neighborhood;
 mod normal_cycle;
-pub mod normals;
 mod par;
 pub mod pointwise;
 mod rusinkiewicz;
 pub mod status;
 pub mod tensor;
 
-pub use area::AreaKind;
 pub use error::{CurvatureError, Result};
 pub use fit::{Degree, FitOptions};
 pub use gaussian::{gaussian_curvature, GaussianCurvature, GaussianOptions};
 pub use integral::{integral_curvature, IntegralCurvature};
 pub use mean::{mean_curvature, mean_curvature_with_normals, MeanCurvature, MeanOptions};
+/// The choices of vertex area and vertex normal, shared with every crate of the workspace.
+pub use mesh_kernel::{geometry::NormalWeighting, operators::MassKind};
 pub use neighborhood::Neighborhood;
-pub use normals::Normals;
 pub use pointwise::{
     flag_code, pointwise_curvature, sampling_length, CurvatureFlag, FlagCounts, PointwiseCurvature, PointwiseOptions,
 };

@@ -5,25 +5,25 @@ use glam::DVec3;
 use mesh_kernel::operators::cotan_laplacian;
 use mesh_kernel::TriMesh;
 
-use crate::area::{vertex_areas, AreaKind};
 use crate::error::{CurvatureError, Result};
-use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
+use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
+use mesh_kernel::operators::{lumped_mass, MassKind};
 
 /// Options of [`mean_curvature`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MeanOptions {
     /// The area that turns the integrated curvature into a pointwise one.
-    pub area: AreaKind,
+    pub area: MassKind,
     /// The vertex normal that gives the sign (and, off the interior, the
     /// direction the mean-curvature normal is projected on).
-    pub normals: Normals,
+    pub normals: NormalWeighting,
 }
 
 impl Default for MeanOptions {
     fn default() -> Self {
-        Self { area: AreaKind::MixedVoronoi, normals: Normals::Area }
+        Self { area: MassKind::MixedVoronoi, normals: NormalWeighting::Area }
     }
 }
 
@@ -78,7 +78,7 @@ pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurva
 ///
 /// # Errors
 /// `CurvatureError::InvalidOption` (`normals`) when `normals` does not have one entry per vertex.
-pub fn mean_curvature_with_normals(mesh: &TriMesh, area: AreaKind, normals: &[DVec3]) -> Result<MeanCurvature> {
+pub fn mean_curvature_with_normals(mesh: &TriMesh, area: MassKind, normals: &[DVec3]) -> Result<MeanCurvature> {
     if normals.len() != mesh.vertex_count() {
         return Err(CurvatureError::InvalidOption {
             name: "normals",
@@ -101,7 +101,7 @@ impl MeanCurvature {
 }
 
 /// `(L x)_i` for every vertex, and the vertex areas. O(V + F).
-fn laplacian_and_area(mesh: &TriMesh, kind: AreaKind) -> (Vec<DVec3>, Vec<f64>) {
+fn laplacian_and_area(mesh: &TriMesh, kind: MassKind) -> (Vec<DVec3>, Vec<f64>) {
     let p = mesh.positions();
     par::join(
         || {
@@ -110,7 +110,7 @@ fn laplacian_and_area(mesh: &TriMesh, kind: AreaKind) -> (Vec<DVec3>, Vec<f64>) 
                 l.outer_view(i).map_or(DVec3::ZERO, |row| row.iter().map(|(j, w)| *w * p[j]).sum::<DVec3>())
             })
         },
-        || vertex_areas(mesh, kind),
+        || lumped_mass(mesh, kind),
     )
 }
 

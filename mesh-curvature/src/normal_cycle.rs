@@ -14,13 +14,13 @@ use glam::DVec3;
 use mesh_kernel::geometry::dihedral_angles;
 use mesh_kernel::TriMesh;
 
-use crate::area::{vertex_areas, AreaKind};
 use crate::frame::Sym2;
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
-use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
+use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
+use mesh_kernel::operators::{lumped_mass, MassKind};
 
 /// A symmetric 3x3 matrix stored as (xx, yy, zz, xy, xz, yz).
 type Sym3 = [f64; 6];
@@ -66,10 +66,10 @@ fn vertex_edge_tensors(mesh: &TriMesh) -> Vec<Sym3> {
 }
 
 /// The normal-cycle estimator over `nbh`. O(sum of neighbourhood sizes).
-pub(crate) fn estimate(mesh: &TriMesh, normals: Normals, nbh: Neighborhood) -> Vec<LocalTensor> {
+pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting, nbh: Neighborhood) -> Vec<LocalTensor> {
     let nv = vertex_normals(mesh, normals);
     let tensors = vertex_edge_tensors(mesh);
-    let area = vertex_areas(mesh, AreaKind::MixedVoronoi);
+    let area = lumped_mass(mesh, MassKind::MixedVoronoi);
     let adj = Adjacency::new(mesh);
     let status = topological_status(mesh);
     let p = mesh.positions();

@@ -21,7 +21,6 @@ use mesh_kernel::clean::is_degenerate_triangle;
 use mesh_kernel::operators::laplacian::DEGENERATE_TOLERANCE;
 use mesh_kernel::TriMesh;
 
-use crate::area::AreaKind;
 use crate::error::{CurvatureError, Result};
 use crate::gaussian::{gaussian_curvature, GaussianOptions};
 use crate::mean::mean_curvature_with_normals;
@@ -29,6 +28,7 @@ use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
 use crate::par;
 use crate::status::VertexStatus;
 use crate::tensor::{curvature_tensor, CurvatureTensor, TensorOptions};
+use mesh_kernel::operators::MassKind;
 
 /// Options of [`pointwise_curvature`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,7 +36,7 @@ pub struct PointwiseOptions {
     /// The curvature tensor's estimator.
     pub tensor: TensorOptions,
     /// The area dividing the integrated discrete curvature.
-    pub area: AreaKind,
+    pub area: MassKind,
     /// Resolution limit: a curvature `k` at a vertex of sampling length `h`
     /// ([`sampling_length`]) is flagged [`CurvatureFlag::Unresolved`] when
     /// `|k| h > resolution` (for the Gaussian curvature, `|K| h^2 >
@@ -49,7 +49,7 @@ pub struct PointwiseOptions {
 
 impl Default for PointwiseOptions {
     fn default() -> Self {
-        Self { tensor: TensorOptions::default(), area: AreaKind::default(), resolution: 2.0 }
+        Self { tensor: TensorOptions::default(), area: MassKind::default(), resolution: 2.0 }
     }
 }
 

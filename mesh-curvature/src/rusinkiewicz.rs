@@ -6,10 +6,10 @@ use glam::DVec3;
 use mesh_kernel::TriMesh;
 
 use crate::frame::{rotate_between, solve_spd, Sym2};
-use crate::normals::{vertex_normals, Normals};
 use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
+use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
 use mesh_kernel::operators::mixed_voronoi_corners;
 
 /// The tensor of one face in its own frame, and the weight of each corner.
@@ -72,7 +72,7 @@ fn to_vertex_frame(face: &FaceTensor, n: DVec3, t1: DVec3) -> Sym2 {
 
 /// Rusinkiewicz's estimator: per-face tensors, then a mixed-Voronoi weighted
 /// average at each vertex over its incident faces. O(V + F), parallel.
-pub(crate) fn estimate(mesh: &TriMesh, normals: Normals) -> Vec<LocalTensor> {
+pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting) -> Vec<LocalTensor> {
     let nv = vertex_normals(mesh, normals);
     let p = mesh.positions();
     let faces = mesh.faces();

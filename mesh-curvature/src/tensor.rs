@@ -9,9 +9,9 @@ use crate::fit::{self, FitOptions};
 use crate::frame::{tangent_basis, Sym2};
 use crate::neighborhood::Neighborhood;
 use crate::normal_cycle;
-use crate::normals::{vertex_normals, Normals};
 use crate::rusinkiewicz;
 use crate::status::VertexStatus;
+use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
 
 /// How the curvature tensor is estimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,12 +39,21 @@ impl Default for Method {
 }
 
 /// Options of [`curvature_tensor`].
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TensorOptions {
     /// The estimator.
     pub method: Method,
-    /// The vertex normals the estimator starts from.
-    pub normals: Normals,
+    /// The vertex normals the estimator starts from. Default
+    /// [`NormalWeighting::Max`] (Max 1999): exact when a vertex and its
+    /// 1-ring lie on a sphere, and what Rusinkiewicz 2004 uses; the tensor
+    /// estimators differentiate the normal field, so its accuracy matters.
+    pub normals: NormalWeighting,
+}
+
+impl Default for TensorOptions {
+    fn default() -> Self {
+        Self { method: Method::default(), normals: NormalWeighting::Max }
+    }
 }
 
 /// Per-vertex curvature tensor, as principal curvatures and directions.
@@ -179,7 +188,7 @@ fn estimate(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> 
         Method::Rusinkiewicz => rusinkiewicz::estimate(mesh, options.normals),
         Method::NormalCycle(nbh) => normal_cycle::estimate(mesh, options.normals, nbh.validate()?),
     };
-    Ok(assemble(local, &vertex_normals(mesh, Normals::Area)))
+    Ok(assemble(local, &vertex_normals(mesh, NormalWeighting::Area)))
 }
 
 /// A tensor in a local frame, as the estimators produce it.

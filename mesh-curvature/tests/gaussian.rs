@@ -5,7 +5,7 @@ mod common;
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_curvature::{gaussian_curvature, AreaKind, GaussianOptions, VertexStatus};
+use mesh_curvature::{gaussian_curvature, GaussianOptions, MassKind, VertexStatus};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
 use proptest::prelude::*;
@@ -113,7 +113,7 @@ fn sphere_curvature_with_both_areas() {
         assert!((total_area - mesh_kernel::geometry::surface_area(&m)).abs() < 1e-12);
         k.pointwise.iter().map(|x| (x - 1.0).abs()).fold(0.0, f64::max)
     };
-    let (mixed, barycentric) = (worst(AreaKind::MixedVoronoi), worst(AreaKind::Barycentric));
+    let (mixed, barycentric) = (worst(MassKind::MixedVoronoi), worst(MassKind::Barycentric));
     assert!(mixed < 5e-4, "{mixed}");
     assert!(barycentric < 0.2 && barycentric > 10.0 * mixed, "{barycentric}");
 }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use mesh_curvature::{mean_curvature, MeanOptions, Normals, VertexStatus};
+use mesh_curvature::{mean_curvature, MeanOptions, NormalWeighting, VertexStatus};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
 
@@ -55,7 +55,7 @@ fn sign_follows_the_orientation() {
 #[test]
 fn cylinder_interior_and_boundary() {
     let (m, _) = common::cylinder(64, 16, 1);
-    for normals in [Normals::Area, Normals::Max, Normals::Angle, Normals::Uniform] {
+    for normals in [NormalWeighting::Area, NormalWeighting::Max, NormalWeighting::Angle, NormalWeighting::Uniform] {
         let h = mean_curvature(&m, &MeanOptions { normals, ..Default::default() }).unwrap();
         for i in 0..m.vertex_count() {
             match h.status[i] {

@@ -5,7 +5,7 @@ mod common;
 
 use common::{errors, order};
 use mesh_curvature::{
-    curvature_tensor, CurvatureError, CurvatureTensor, Degree, FitOptions, Method, Neighborhood, Normals,
+    curvature_tensor, CurvatureError, CurvatureTensor, Degree, FitOptions, Method, Neighborhood, NormalWeighting,
     TensorOptions, VertexStatus,
 };
 use mesh_kernel::glam::{DMat3, DVec3};
@@ -13,7 +13,7 @@ use mesh_kernel::{shapes, TriMesh};
 use proptest::prelude::*;
 
 fn tensor(mesh: &TriMesh, method: Method) -> CurvatureTensor {
-    curvature_tensor(mesh, &TensorOptions { method, normals: Normals::Max }).unwrap()
+    curvature_tensor(mesh, &TensorOptions { method, normals: NormalWeighting::Max }).unwrap()
 }
 
 fn default_tensor(mesh: &TriMesh) -> CurvatureTensor {

@@ -9,7 +9,7 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use mesh_geodesic::{
     dijkstra, exact_distance, farthest_point_sampling, trace_path, DijkstraOptions, FastMarching, FmmOptions,
-    FmmUpdate, HeatGeodesics, HeatLaplacian, HeatOptions, SamplingOptions, SurfacePoint, TraceOptions,
+    FmmUpdate, HeatGeodesics, HeatOptions, LaplacianKind, SamplingOptions, SurfacePoint, TraceOptions,
 };
 use mesh_kernel::{shapes, TriMesh, VertexId};
 
@@ -61,10 +61,10 @@ fn bench_heat(c: &mut Criterion) {
         let mesh = sphere(level);
         let n = mesh.vertex_count();
         // At 655k vertices only the default Laplacian (a factorization takes seconds).
-        let laplacians: &[HeatLaplacian] = if level < 8 {
-            &[HeatLaplacian::IntrinsicDelaunay, HeatLaplacian::Cotan]
+        let laplacians: &[LaplacianKind] = if level < 8 {
+            &[LaplacianKind::IntrinsicDelaunay, LaplacianKind::Cotan]
         } else {
-            &[HeatLaplacian::IntrinsicDelaunay]
+            &[LaplacianKind::IntrinsicDelaunay]
         };
         for &laplacian in laplacians {
             let opts = HeatOptions { laplacian, ..Default::default() };

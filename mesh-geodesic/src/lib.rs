@@ -65,9 +65,10 @@ pub use error::{GeodesicError, Result};
 pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
 #[cfg(feature = "heat")]
-pub use heat::{
-    heat_distance, HeatBoundary, HeatDistance, HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus,
-};
+pub use heat::{heat_distance, HeatBoundary, HeatDistance, HeatFarField, HeatGeodesics, HeatOptions, HeatStatus};
+/// The choice of Laplacian of the heat method, shared with every crate of the workspace.
+#[cfg(feature = "heat")]
+pub use mesh_kernel::operators::LaplacianKind;
 pub use sampling::{farthest_point_sampling, geodesic_voronoi, GeodesicVoronoi, SamplingMetric, SamplingOptions};
 pub use trace::{trace_path, GeodesicPath, SurfacePoint, TraceOptions};
 

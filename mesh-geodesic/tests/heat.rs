@@ -3,11 +3,11 @@
 
 mod common;
 
-use mesh_geodesic::{heat_distance, GeodesicError, HeatBoundary, HeatGeodesics, HeatLaplacian, HeatOptions};
+use mesh_geodesic::{heat_distance, GeodesicError, HeatBoundary, HeatGeodesics, HeatOptions, LaplacianKind};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh, VertexId};
 
-fn with(laplacian: HeatLaplacian) -> HeatOptions {
+fn with(laplacian: LaplacianKind) -> HeatOptions {
     HeatOptions { laplacian, ..Default::default() }
 }
 
@@ -17,7 +17,7 @@ fn sphere_level_5_no_worse_than_potpourri3d() {
     // 0.01887 / 0.00866).
     let mesh = shapes::icosphere(5).unwrap();
     let truth = common::sphere_truth(&mesh, VertexId(0));
-    for laplacian in [HeatLaplacian::Cotan, HeatLaplacian::IntrinsicDelaunay] {
+    for laplacian in [LaplacianKind::Cotan, LaplacianKind::IntrinsicDelaunay] {
         let d = heat_distance(&mesh, &[VertexId(0)], &with(laplacian)).unwrap();
         let (max, mean) = common::errors(&d, &truth);
         println!("{laplacian:?}: max {max:.5} mean {mean:.5}");
@@ -100,7 +100,7 @@ fn zero_area_triangles_stay_finite_with_the_intrinsic_laplacian() {
         }
     }
     // The mesh's own cotangent Laplacian: finite values or a clear error.
-    match heat_distance(&mesh, &[VertexId(0)], &with(HeatLaplacian::Cotan)) {
+    match heat_distance(&mesh, &[VertexId(0)], &with(LaplacianKind::Cotan)) {
         Ok(d) => assert!(d.iter().all(|x| x.is_finite())),
         Err(e) => assert!(matches!(e, GeodesicError::Degenerate(_)), "{e}"),
     }
@@ -118,7 +118,7 @@ fn a_sliver_that_disconnects_the_cotan_laplacian_is_reported() {
         DVec3::new(3.0, 1.0, 0.0),
     ];
     let mesh = TriMesh::new(p, vec![[0, 1, 2], [1, 3, 4], [3, 4, 5]]).unwrap();
-    let err = heat_distance(&mesh, &[VertexId(0)], &with(HeatLaplacian::Cotan)).unwrap_err();
+    let err = heat_distance(&mesh, &[VertexId(0)], &with(LaplacianKind::Cotan)).unwrap_err();
     assert!(matches!(err, GeodesicError::Degenerate(_)), "{err}");
     let d = heat_distance(&mesh, &[VertexId(0)], &HeatOptions::default()).unwrap();
     assert!(d.iter().all(|x| x.is_finite()), "{d:?}");

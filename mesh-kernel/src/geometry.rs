@@ -136,7 +136,7 @@ pub fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
 /// How incident face normals are averaged into a vertex normal.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum NormalWeighting {
-    /// Plain average of unit face normals (the seed's point normal, 2.2.2).
+    /// Plain average of unit face normals.
     Uniform,
     /// Weighted by face area (libigl's `PER_VERTEX_NORMALS_WEIGHTING_TYPE_AREA`).
     #[default]
@@ -150,6 +150,13 @@ pub enum NormalWeighting {
     /// area weighting where the sum vanishes (zero-length edges).
     Max,
 }
+
+impl crate::choice::Choice for NormalWeighting {
+    const ALL: &'static [Self] = &[Self::Uniform, Self::Area, Self::Angle, Self::Max];
+    const NAMES: &'static [&'static str] = &["uniform", "area", "angle", "max"];
+    const WHAT: &'static str = "normals";
+}
+crate::choice_str!(NormalWeighting);
 
 /// Unit vertex normals: the normalized weighted sum of incident face normals.
 /// Isolated vertices, and vertices whose weighted sum vanishes, get zero

@@ -7,6 +7,7 @@
 //! | [`mesh`] | [`TriMesh`]: validated `f64` positions and triangles | 2.2.2 |
 //! | [`ids`] | typed indices [`VertexId`], [`FaceId`], [`EdgeId`], [`HalfedgeId`] | |
 //! | [`connectivity`] | half-edges, edges, ordered 1-rings, boundary loops, components, manifold report, Euler characteristic and genus (eq. 2.6-2.7) | 2.2.2, 2.3 |
+//! | [`choice`] | named choices: one list of names per selectable enum, parsed and displayed alike | |
 //! | [`clean`] | welding, degenerate / duplicate / unreferenced removal, orientation, with a report | |
 //! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |
 //! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
@@ -44,6 +45,7 @@
 //! user can feed in panics: invalid input is a [`MeshError`].
 #![deny(missing_docs)]
 
+pub mod choice;
 pub mod clean;
 pub mod connectivity;
 pub mod error;

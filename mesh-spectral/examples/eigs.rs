@@ -24,7 +24,7 @@ use std::time::Instant;
 
 use mesh_kernel::operators::mass::diagonal;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{eigenpairs, pencil, ComponentSelection, LaplacianKind, LumpedMass, Options};
+use mesh_spectral::{eigenpairs, pencil, ComponentSelection, LaplacianKind, MassKind, Options};
 
 fn main() -> ExitCode {
     match run() {
@@ -56,7 +56,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         ComponentSelection::All => mesh,
     };
     let t = Instant::now();
-    let p = pencil(&mesh, laplacian, LumpedMass::MixedVoronoi)?;
+    let p = pencil(&mesh, laplacian, MassKind::MixedVoronoi)?;
     let (l, m) = (p.laplacian, diagonal(p.mass.clone()));
     let assemble = t.elapsed().as_secs_f64();
     writeln!(std::io::stdout(), "operator: {}", p.info.describe())?;

@@ -18,7 +18,9 @@ use sprs::CsMat;
 
 use crate::eigen::{eigenpairs, tall, ComponentSelection, Eigenpairs, Options};
 use crate::error::{Result, SpectralError};
-use crate::operators::{laplace_beltrami, pencil, LaplacianKind, LumpedMass, OperatorInfo};
+use mesh_kernel::operators::{LaplacianKind, MassKind};
+
+use crate::operators::{laplace_beltrami, pencil, OperatorInfo};
 
 /// Options of [`ManifoldHarmonics::new`].
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -27,7 +29,7 @@ pub struct HarmonicsOptions {
     /// has zero-area faces).
     pub laplacian: LaplacianKind,
     /// Lumped mass.
-    pub mass: LumpedMass,
+    pub mass: MassKind,
     /// Eigensolver options; with `component: Largest` the basis lives on
     /// the mesh's largest connected component (most faces) and is zero on
     /// the other vertices.

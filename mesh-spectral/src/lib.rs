@@ -49,6 +49,6 @@ pub use error::{Result, SpectralError};
 pub use filter::{filter, filter_mesh, filter_with, Transfer};
 pub use harmonics::{HarmonicsOptions, ManifoldHarmonics};
 pub use hks::{heat_kernel_signature, hks_times};
-pub use operators::{
-    laplace_beltrami, pencil, LaplacianKind, LumpedMass, OperatorInfo, Pencil, LAPLACIAN_NAMES, MASS_NAMES,
-};
+/// The choices of Laplacian and mass, shared with every crate of the workspace.
+pub use mesh_kernel::operators::{LaplacianKind, MassKind};
+pub use operators::{laplace_beltrami, pencil, OperatorInfo, Pencil};

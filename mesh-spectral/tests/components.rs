@@ -10,7 +10,7 @@ use mesh_kernel::glam::DVec3;
 use mesh_kernel::operators::mass::diagonal;
 use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{
-    eigenpairs, pencil, ComponentSelection, HarmonicsOptions, LaplacianKind, LumpedMass, ManifoldHarmonics, Method,
+    eigenpairs, pencil, ComponentSelection, HarmonicsOptions, LaplacianKind, ManifoldHarmonics, MassKind, Method,
     Options, SpectralError,
 };
 
@@ -39,7 +39,7 @@ fn spheres_and_fragment() -> TriMesh {
 }
 
 fn auto_pencil(mesh: &TriMesh) -> (sprs::CsMat<f64>, sprs::CsMat<f64>, Vec<f64>) {
-    let p = pencil(mesh, LaplacianKind::Auto, LumpedMass::MixedVoronoi).unwrap();
+    let p = pencil(mesh, LaplacianKind::Auto, MassKind::MixedVoronoi).unwrap();
     (p.laplacian, diagonal(p.mass.clone()), p.mass)
 }
 
@@ -141,7 +141,7 @@ fn sphere_with_zero_area_faces(level: u32, every: usize) -> (TriMesh, usize) {
 fn zero_area_faces_take_the_intrinsic_laplacian_and_stay_psd() {
     let (mesh, slivers) = sphere_with_zero_area_faces(3, 7);
     assert!(mesh.connectivity().is_manifold());
-    let p = pencil(&mesh, LaplacianKind::Auto, LumpedMass::MixedVoronoi).unwrap();
+    let p = pencil(&mesh, LaplacianKind::Auto, MassKind::MixedVoronoi).unwrap();
     assert_eq!(p.info.laplacian, LaplacianKind::IntrinsicDelaunay);
     assert_eq!(p.info.degenerate_faces, slivers);
     // Positive semi-definite: every eigenvalue of the whole pencil >= 0

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use mesh_curvature::{
-    flag_code, pointwise_curvature, AreaKind, CurvatureFlag, Degree, FitOptions, FlagCounts, Method, Neighborhood,
+    flag_code, pointwise_curvature, CurvatureFlag, Degree, FitOptions, FlagCounts, MassKind, Method, Neighborhood,
     PointwiseOptions, StatusCounts, TensorOptions,
 };
 use mesh_io::MeshView;
@@ -213,8 +213,8 @@ pub fn run(args: &Args) -> CliResult<()> {
 fn write_fields(args: &Args) -> CliResult<Summary> {
     let tensor = tensor_options(args)?;
     let area = match args.area.as_str() {
-        "mixed" => AreaKind::MixedVoronoi,
-        "barycentric" => AreaKind::Barycentric,
+        "mixed" => MassKind::MixedVoronoi,
+        "barycentric" => MassKind::Barycentric,
         other => return Err(format!("unknown --area `{other}`; known: mixed, barycentric").into()),
     };
     let options = PointwiseOptions { tensor, area, resolution: args.resolution };

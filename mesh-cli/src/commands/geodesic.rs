@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use mesh_geodesic::{
     dijkstra, exact_distance, trace_path, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, FmmUpdate,
-    HeatFarField, HeatGeodesics, HeatLaplacian, HeatOptions, HeatStatus, SurfacePoint, TraceOptions,
+    HeatFarField, HeatGeodesics, HeatOptions, HeatStatus, LaplacianKind, SurfacePoint, TraceOptions,
 };
 use mesh_io::MeshView;
 use mesh_kernel::VertexId;
@@ -165,8 +165,8 @@ fn distance(args: &Args, mesh: &mesh_kernel::TriMesh, sources: &[VertexId]) -> C
     match args.method.as_str() {
         "heat" => {
             let laplacian = match args.laplacian.as_str() {
-                "intrinsic" => HeatLaplacian::IntrinsicDelaunay,
-                "cotan" => HeatLaplacian::Cotan,
+                "intrinsic" => LaplacianKind::IntrinsicDelaunay,
+                "cotan" => LaplacianKind::Cotan,
                 other => return Err(format!("unknown --laplacian `{other}`; known: intrinsic, cotan").into()),
             };
             let far_field: HeatFarField = args.far_field.parse()?;

@@ -21,7 +21,7 @@ use mesh_io::MeshView;
 use mesh_kernel::TriMesh;
 use mesh_spectral::{
     compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, CompressionError,
-    HarmonicsOptions, LaplacianKind, LumpedMass, ManifoldHarmonics, Options, Transfer,
+    HarmonicsOptions, LaplacianKind, MassKind, ManifoldHarmonics, Options, Transfer,
 };
 use serde::Serialize;
 
@@ -68,7 +68,7 @@ struct OperatorArgs {
 impl OperatorArgs {
     fn options(&self) -> CliResult<HarmonicsOptions> {
         let laplacian: LaplacianKind = self.laplacian.parse()?;
-        let mass: LumpedMass = self.mass.parse()?;
+        let mass: MassKind = self.mass.parse()?;
         let eigen = Options { tolerance: self.tolerance, ..Options::default() };
         Ok(HarmonicsOptions { laplacian, mass, eigen })
     }

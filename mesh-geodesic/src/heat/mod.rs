@@ -52,7 +52,7 @@ mod far;
 mod status;
 
 use mesh_kernel::glam::DVec2;
-use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
+use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
 use mesh_kernel::solver::Cholesky;
 use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
@@ -61,21 +61,6 @@ use crate::support::validate_sources;
 use assembly::{first_split_vertex, heat_ceiling, pin_pieces, shifted, unchanged_lengths, with_identity_rows};
 use face::{extrinsic_faces, FaceGradient};
 pub use status::{HeatDistance, HeatFarField, HeatStatus};
-
-/// Which Laplacian (and triangulation) the heat method works on.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum HeatLaplacian {
-    /// The cotangent Laplacian of the mesh itself (the paper's choice).
-    /// Zero-area triangles contribute nothing; if that disconnects part of
-    /// the mesh, construction fails with [`GeodesicError::Degenerate`].
-    Cotan,
-    /// The cotangent Laplacian of the mollified intrinsic Delaunay
-    /// triangulation (Sharp and Crane 2020): non-negative weights, finite on
-    /// zero-area triangles, identical to [`HeatLaplacian::Cotan`] on
-    /// Delaunay meshes.
-    #[default]
-    IntrinsicDelaunay,
-}
 
 /// Boundary condition of the heat flow on meshes with boundary.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -96,8 +81,15 @@ pub struct HeatOptions {
     /// The factor m of the time step t = m h^2, h the mean edge length.
     /// Default 1 (the paper's choice).
     pub time_factor: f64,
-    /// The Laplacian. Default [`HeatLaplacian::IntrinsicDelaunay`].
-    pub laplacian: HeatLaplacian,
+    /// The Laplacian (and triangulation) the heat method works on. Default
+    /// [`LaplacianKind::IntrinsicDelaunay`] (Sharp and Crane 2020): finite on
+    /// zero-area triangles and identical to [`LaplacianKind::Cotan`] on
+    /// Delaunay meshes. With [`LaplacianKind::Cotan`] (the paper's choice)
+    /// zero-area triangles contribute nothing; if that disconnects part of
+    /// the mesh, construction fails with [`GeodesicError::Degenerate`].
+    /// [`LaplacianKind::Auto`] takes the cotangent one unless the mesh has
+    /// zero-area faces.
+    pub laplacian: LaplacianKind,
     /// The boundary condition of the heat flow. Default [`HeatBoundary::Mean`].
     pub boundary: HeatBoundary,
     /// Options of the intrinsic Delaunay triangulation.
@@ -111,7 +103,7 @@ impl Default for HeatOptions {
     fn default() -> Self {
         Self {
             time_factor: 1.0,
-            laplacian: HeatLaplacian::default(),
+            laplacian: LaplacianKind::IntrinsicDelaunay,
             boundary: HeatBoundary::default(),
             intrinsic: IntrinsicOptions::default(),
             far_field: HeatFarField::default(),
@@ -183,7 +175,7 @@ impl HeatGeodesics {
     /// `GeodesicError::Mesh` with `MeshError::Empty` for a mesh without faces, or the errors of the intrinsic
     /// Delaunay triangulation and of the Cholesky factorization (`MeshError::Solver`);
     /// `GeodesicError::Degenerate` when zero-area triangles disconnect the cotangent Laplacian (choose
-    /// `HeatLaplacian::IntrinsicDelaunay`) or every edge has zero length.
+    /// `LaplacianKind::IntrinsicDelaunay`) or every edge has zero length.
     pub fn new(mesh: &TriMesh, options: &HeatOptions) -> Result<Self> {
         if !(options.time_factor.is_finite() && options.time_factor > 0.0) {
             return Err(GeodesicError::InvalidOption {
@@ -202,9 +194,13 @@ impl HeatGeodesics {
             let faces = extrinsic_faces(mesh);
             (faces, operators::cotan_laplacian(mesh), operators::lumped_mass(mesh, MassKind::Barycentric))
         };
-        let (faces, laplacian, mass) = match options.laplacian {
-            HeatLaplacian::Cotan => extrinsic(),
-            HeatLaplacian::IntrinsicDelaunay => {
+        let kind = match options.laplacian {
+            LaplacianKind::Auto => options.laplacian.resolve(mesh).0,
+            kind => kind,
+        };
+        let (faces, laplacian, mass) = match kind {
+            LaplacianKind::Cotan => extrinsic(),
+            LaplacianKind::Auto | LaplacianKind::IntrinsicDelaunay => {
                 let t = IntrinsicTriangulation::delaunay(mesh, &options.intrinsic)?;
                 if t.flip_count() == 0 && unchanged_lengths(mesh, &t.lengths()) {
                     // Already Delaunay and not mollified: the same operator,
@@ -228,7 +224,7 @@ impl HeatGeodesics {
             let split = first_split_vertex(&faces, n, &components.vertex_component);
             return Err(GeodesicError::Degenerate(format!(
                 "zero-area triangles disconnect the cotangent Laplacian (around vertex {split}); \
-                 use HeatLaplacian::IntrinsicDelaunay"
+                 use LaplacianKind::IntrinsicDelaunay"
             )));
         }
         let mean_edge = mesh_kernel::geometry::mean_edge_length(mesh);

@@ -13,6 +13,47 @@ use crate::par::map_indexed;
 /// (see [`crate::clean::is_degenerate_triangle`]).
 pub const DEGENERATE_TOLERANCE: f64 = 1e-12;
 
+/// Which Laplace-Beltrami discretization an algorithm works with.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum LaplacianKind {
+    /// [`LaplacianKind::Cotan`] unless the mesh has zero-area faces, then
+    /// [`LaplacianKind::IntrinsicDelaunay`]: a zero-area triangle has no
+    /// cotangents, and its near-degenerate neighbours have huge ones.
+    /// [`LaplacianKind::resolve`] says which one a mesh gets.
+    #[default]
+    Auto,
+    /// The cotangent Laplacian of the mesh itself (eq. 2.15; `-igl::cotmatrix`);
+    /// zero-area faces contribute nothing.
+    Cotan,
+    /// The cotangent Laplacian of the intrinsic Delaunay triangulation
+    /// (Bobenko and Springborn 2007) of the mollified edge lengths (Sharp and
+    /// Crane 2020): non-negative weights, well defined on zero-area
+    /// triangles, equal to [`LaplacianKind::Cotan`] on Delaunay meshes.
+    IntrinsicDelaunay,
+}
+
+impl crate::choice::Choice for LaplacianKind {
+    const ALL: &'static [Self] = &[Self::Auto, Self::Cotan, Self::IntrinsicDelaunay];
+    const NAMES: &'static [&'static str] = &["auto", "cotan", "intrinsic"];
+    const WHAT: &'static str = "laplacian";
+}
+crate::choice_str!(LaplacianKind);
+
+impl LaplacianKind {
+    /// The Laplacian `self` stands for on `mesh` (never `Auto`) and the
+    /// number of zero-area faces (relative area at most
+    /// [`DEGENERATE_TOLERANCE`]) that decided it. O(F).
+    pub fn resolve(self, mesh: &TriMesh) -> (Self, usize) {
+        let degenerate = crate::clean::degenerate_faces(mesh, DEGENERATE_TOLERANCE).len();
+        let kind = match self {
+            Self::Auto if degenerate > 0 => Self::IntrinsicDelaunay,
+            Self::Auto => Self::Cotan,
+            other => other,
+        };
+        (kind, degenerate)
+    }
+}
+
 /// Cotangents of the three angles of a triangle, `[k]` at corner `k`, or zeros
 /// when the triangle is degenerate (zero area): a zero-area triangle adds no
 /// stiffness instead of an infinite one. Use

@@ -23,6 +23,13 @@ pub enum MassKind {
     Galerkin,
 }
 
+impl crate::choice::Choice for MassKind {
+    const ALL: &'static [Self] = &[Self::Barycentric, Self::MixedVoronoi, Self::Galerkin];
+    const NAMES: &'static [&'static str] = &["barycentric", "voronoi", "galerkin"];
+    const WHAT: &'static str = "mass";
+}
+crate::choice_str!(MassKind);
+
 /// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
 /// the Galerkin matrix, which equals the barycentric area. Isolated vertices
 /// get zero. O(F).

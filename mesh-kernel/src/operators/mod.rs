@@ -16,7 +16,7 @@ pub mod mass;
 mod pattern;
 
 pub use intrinsic::{IntrinsicOptions, IntrinsicTriangulation};
-pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans};
+pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans, LaplacianKind};
 pub use mass::{lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};
 pub use pattern::EdgePattern;
 

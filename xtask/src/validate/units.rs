@@ -11,8 +11,8 @@ use mesh_curvature::{
     curvature_tensor, gaussian_curvature, mean_curvature, pointwise_curvature, PointwiseOptions, TensorOptions,
 };
 use mesh_geodesic::{
-    dijkstra, exact_distance, fmm_distance, DijkstraOptions, ExactOptions, FmmOptions, HeatGeodesics, HeatLaplacian,
-    HeatOptions,
+    dijkstra, exact_distance, fmm_distance, DijkstraOptions, ExactOptions, FmmOptions, HeatGeodesics, HeatOptions,
+    LaplacianKind,
 };
 use mesh_kernel::clean::{clean, CleanOptions};
 use mesh_kernel::glam::{DVec2, DVec3};
@@ -152,7 +152,7 @@ const CLOSED: &[Operation] = &[
             .map_err(|e| e.to_string())
     }),
     ("heat distance (intrinsic Delaunay)", 1, |m| {
-        let options = HeatOptions { laplacian: HeatLaplacian::IntrinsicDelaunay, ..Default::default() };
+        let options = HeatOptions { laplacian: LaplacianKind::IntrinsicDelaunay, ..Default::default() };
         HeatGeodesics::new(m, &options).and_then(|h| h.distance(&[VertexId::new(0)])).map_err(|e| e.to_string())
     }),
     ("fast marching distance", 1, |m| {
