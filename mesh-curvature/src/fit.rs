@@ -25,10 +25,10 @@ use mesh_kernel::TriMesh;
 use crate::error::Result;
 use crate::frame::{solve_spd, tangent_basis, InverseBlock, Sym2};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
-use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
 use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
+use mesh_kernel::par;
 
 /// Degree of the fitted height field.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -3,13 +3,13 @@
 
 use std::f64::consts::{PI, TAU};
 
-use glam::DVec3;
+use mesh_kernel::geometry::corner_angles;
 use mesh_kernel::{TriMesh, VertexKind};
 
 use crate::error::Result;
-use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::par;
 
 /// Options of [`gaussian_curvature`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -101,41 +101,6 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
         }
     }
     Ok(GaussianCurvature { integrated, geodesic, pointwise, area, status })
-}
-
-/// The three corner angles of every face, computed so that they sum to pi:
-/// `atan2(2 area, dot)` at the two ends of the longest edge (the two smaller,
-/// well-conditioned angles) and `pi` minus both at the third corner. Zero-area
-/// and zero-length-edge faces give angles in `[0, pi]` summing to pi. O(F).
-pub(crate) fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    let p = mesh.positions();
-    let faces = mesh.faces();
-    par::map(faces.len(), |f| triangle_angles(faces[f].map(|v| p[v as usize])))
-}
-
-/// Corner angles of one triangle summing to pi (see [`corner_angles`]).
-#[inline]
-pub(crate) fn triangle_angles(tri: [DVec3; 3]) -> [f64; 3] {
-    // Edge k runs from corner k to corner k + 1.
-    let e = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
-    let double_area = mesh_kernel::geometry::norm(e[0].cross(e[2]));
-    let len2 = e.map(|x| x.length_squared());
-    let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
-        0
-    } else if len2[1] >= len2[2] {
-        1
-    } else {
-        2
-    };
-    // The angle at corner k lies between edge k and the reversed edge k + 2.
-    let angle = |k: usize| double_area.atan2(-e[k].dot(e[(k + 2) % 3]));
-    let (k0, k1, k2) = (m, (m + 1) % 3, (m + 2) % 3);
-    let (a0, a1) = (angle(k0), angle(k1));
-    let mut out = [0.0; 3];
-    out[k0] = a0;
-    out[k1] = a1;
-    out[k2] = PI - a0 - a1;
-    out
 }
 
 /// Neumaier's compensated sum.

@@ -8,8 +8,8 @@ use crate::error::Result;
 use crate::gaussian::{gaussian_curvature, GaussianOptions};
 use crate::mean::{mean_curvature, MeanOptions};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
-use crate::par;
 use mesh_kernel::operators::MassKind;
+use mesh_kernel::par;
 
 /// Curvature integrated over each vertex's neighbourhood.
 #[derive(Debug, Clone, PartialEq)]

@@ -45,7 +45,6 @@ pub mod integral;
 pub mod mean;
 pub mod neighborhood;
 mod normal_cycle;
-mod par;
 pub mod pointwise;
 mod rusinkiewicz;
 pub mod status;

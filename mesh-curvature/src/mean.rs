@@ -6,10 +6,10 @@ use mesh_kernel::operators::cotan_laplacian;
 use mesh_kernel::TriMesh;
 
 use crate::error::{CurvatureError, Result};
-use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
 use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::par;
 
 /// Options of [`mean_curvature`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -16,11 +16,11 @@ use mesh_kernel::TriMesh;
 
 use crate::frame::Sym2;
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
-use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
 use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
 use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::par;
 
 /// A symmetric 3x3 matrix stored as (xx, yy, zz, xy, xz, yz).
 type Sym3 = [f64; 6];

@@ -25,10 +25,10 @@ use crate::error::{CurvatureError, Result};
 use crate::gaussian::{gaussian_curvature, GaussianOptions};
 use crate::mean::mean_curvature_with_normals;
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
-use crate::par;
 use crate::status::VertexStatus;
 use crate::tensor::{curvature_tensor, CurvatureTensor, TensorOptions};
 use mesh_kernel::operators::MassKind;
+use mesh_kernel::par;
 
 /// Options of [`pointwise_curvature`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,11 +6,11 @@ use glam::DVec3;
 use mesh_kernel::TriMesh;
 
 use crate::frame::{rotate_between, solve_spd, Sym2};
-use crate::par;
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
 use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
 use mesh_kernel::operators::mixed_voronoi_corners;
+use mesh_kernel::par;
 
 /// The tensor of one face in its own frame, and the weight of each corner.
 #[derive(Debug, Clone, Copy)]

@@ -123,8 +123,7 @@ impl Geometry {
             for k in 0..3 {
                 let (a, b, c) = (p[face[k] as usize], p[face[(k + 1) % 3] as usize], p[face[(k + 2) % 3] as usize]);
                 let (l, ac, bc) = (a.distance(b), a.distance(c), b.distance(c));
-                let x = (l * l + ac * ac - bc * bc) / (2.0 * l);
-                let y = (ac * ac - x * x).max(0.0).sqrt();
+                let DVec2 { x, y } = mesh_kernel::geometry::planar_apex(l, ac, bc);
                 if !(y > DEGENERATE * l.max(ac).max(bc)) || !x.is_finite() {
                     return Err(GeodesicError::Degenerate(format!(
                         "face {f} has no area; exact geodesics need proper triangles \

@@ -8,11 +8,11 @@
 //! for coordinates between 1e-150 and 1e150: the unit of length does not
 //! change an answer.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::ids::{EdgeId, FaceId};
 use crate::mesh::TriMesh;
-use crate::par::map_indexed;
+use crate::par;
 
 /// Euclidean length of `v` without overflow or underflow in the squares:
 /// `v.length()` when the largest component lies in `[1e-150, 1e150]`,
@@ -111,26 +111,68 @@ pub fn angle_between(u: DVec3, v: DVec3) -> f64 {
     u.cross(v).length().atan2(u.dot(v))
 }
 
-/// Interior angles of a triangle at its three corners (sum pi unless degenerate).
+/// Interior angles of a triangle, `[k]` at corner `k`, computed so that they
+/// sum to pi: `atan2(2 area, dot)` at the two ends of the longest edge (the
+/// two smaller, well-conditioned angles) and pi minus both at the third
+/// corner. Zero-area and zero-length-edge triangles give angles in `[0, pi]`
+/// summing to pi. Works in the triangle's own unit
+/// ([`triangle_in_own_unit`]), so any finite size is fine.
 #[inline]
 pub fn triangle_angles(tri: [DVec3; 3]) -> [f64; 3] {
-    let [a, b, c] = triangle_in_own_unit(tri).0;
-    [angle_between(b - a, c - a), angle_between(c - b, a - b), angle_between(a - c, b - c)]
+    let tri = triangle_in_own_unit(tri).0;
+    // Edge k runs from corner k to corner k + 1.
+    let e = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
+    let double_area = norm(e[0].cross(e[2]));
+    let len2 = e.map(|x| x.length_squared());
+    let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
+        0
+    } else if len2[1] >= len2[2] {
+        1
+    } else {
+        2
+    };
+    // The angle at corner k lies between edge k and the reversed edge k + 2.
+    let angle = |k: usize| double_area.atan2(-e[k].dot(e[(k + 2) % 3]));
+    let (k0, k1, k2) = (m, (m + 1) % 3, (m + 2) % 3);
+    let (a0, a1) = (angle(k0), angle(k1));
+    let mut out = [0.0; 3];
+    out[k0] = a0;
+    out[k1] = a1;
+    out[k2] = std::f64::consts::PI - a0 - a1;
+    out
+}
+
+/// The apex of a triangle laid out in the plane from its side lengths: the
+/// base runs from the origin to `(base, 0)`, the apex lies at `from_start`
+/// from the origin and `from_end` from `(base, 0)`, on the side `y >= 0`.
+/// `x` by the law of cosines, `y = 2 area / base` with Kahan's Heron area
+/// ([`crate::operators::intrinsic::heron_area`]), which stays accurate on
+/// slivers where `sqrt(from_start^2 - x^2)` cancels. Lengths that violate
+/// the triangle inequality give `y = 0`; a base that is not positive gives
+/// the origin. O(1).
+#[inline]
+pub fn planar_apex(base: f64, from_start: f64, from_end: f64) -> DVec2 {
+    if base.is_nan() || base <= 0.0 {
+        return DVec2::ZERO;
+    }
+    let x = (base * base + from_start * from_start - from_end * from_end) / (2.0 * base);
+    let area = crate::operators::intrinsic::heron_area(base, from_start, from_end);
+    DVec2::new(x, 2.0 * area / base)
 }
 
 /// Area of every face.
 pub fn face_areas(mesh: &TriMesh) -> Vec<f64> {
-    map_indexed(mesh.face_count(), |f| triangle_area(mesh.triangle(FaceId::new(f))))
+    par::map(mesh.face_count(), |f| triangle_area(mesh.triangle(FaceId::new(f))))
 }
 
 /// Unit normal of every face (zero for zero-area faces).
 pub fn face_normals(mesh: &TriMesh) -> Vec<DVec3> {
-    map_indexed(mesh.face_count(), |f| triangle_normal(mesh.triangle(FaceId::new(f))))
+    par::map(mesh.face_count(), |f| triangle_normal(mesh.triangle(FaceId::new(f))))
 }
 
 /// Interior angle at each corner of every face, `[f][k]` at corner `k`.
 pub fn corner_angles(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    map_indexed(mesh.face_count(), |f| triangle_angles(mesh.triangle(FaceId::new(f))))
+    par::map(mesh.face_count(), |f| triangle_angles(mesh.triangle(FaceId::new(f))))
 }
 
 /// How incident face normals are averaged into a vertex normal.

@@ -12,6 +12,7 @@
 //! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |
 //! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
+//! | [`par`] | parallel maps over index ranges: one threshold and task size for every crate (feature `rayon`) | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
@@ -53,7 +54,7 @@ pub mod geometry;
 pub mod ids;
 pub mod mesh;
 pub mod operators;
-mod par;
+pub mod par;
 pub mod shapes;
 #[cfg(feature = "solver")]
 pub mod solver;

@@ -21,7 +21,7 @@ use mesh_io::MeshView;
 use mesh_kernel::TriMesh;
 use mesh_spectral::{
     compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, CompressionError,
-    HarmonicsOptions, LaplacianKind, MassKind, ManifoldHarmonics, Options, Transfer,
+    HarmonicsOptions, LaplacianKind, ManifoldHarmonics, MassKind, Options, Transfer,
 };
 use serde::Serialize;
 

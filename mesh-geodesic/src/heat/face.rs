@@ -28,8 +28,7 @@ impl FaceGradient {
             return Self { vertices, w: None };
         }
         // Corner 0 at the origin, corner 1 on +x, corner 2 above.
-        let x2 = (l[0] * l[0] + l[2] * l[2] - l[1] * l[1]) / (2.0 * l[0]);
-        let p = [DVec2::ZERO, DVec2::new(l[0], 0.0), DVec2::new(x2, 2.0 * area / l[0])];
+        let p = [DVec2::ZERO, DVec2::new(l[0], 0.0), mesh_kernel::geometry::planar_apex(l[0], l[2], l[1])];
         let w = [0, 1, 2].map(|k| 0.5 * (p[(k + 2) % 3] - p[(k + 1) % 3]).perp());
         Self { vertices, w: Some(w) }
     }
@@ -91,8 +90,7 @@ mod tests {
         let f = FaceGradient::new([0, 1, 2], l);
         let w = f.w.unwrap();
         let area = operators::intrinsic::heron_area(l[0], l[1], l[2]);
-        let x2 = (l[0] * l[0] + l[2] * l[2] - l[1] * l[1]) / (2.0 * l[0]);
-        let p = [DVec2::ZERO, DVec2::new(l[0], 0.0), DVec2::new(x2, 2.0 * area / l[0])];
+        let p = [DVec2::ZERO, DVec2::new(l[0], 0.0), mesh_kernel::geometry::planar_apex(l[0], l[2], l[1])];
         let g = DVec2::new(2.0, -1.0);
         let u: Vec<f64> = p.iter().map(|q| g.dot(*q) + 5.0).collect();
         let grad: DVec2 = (0..3).map(|k| u[k] * w[k]).sum::<DVec2>() / area;

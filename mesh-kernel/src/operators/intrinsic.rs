@@ -331,11 +331,10 @@ fn flipped_length(l_ab: f64, l_bc: f64, l_ca: f64, l_ad: f64, l_db: f64) -> f64 
     if l_ab <= 0.0 {
         return l_ca + l_ad;
     }
-    let xc = (l_ab * l_ab + l_ca * l_ca - l_bc * l_bc) / (2.0 * l_ab);
-    let yc = (l_ca * l_ca - xc * xc).max(0.0).sqrt();
-    let xd = (l_ab * l_ab + l_ad * l_ad - l_db * l_db) / (2.0 * l_ab);
-    let yd = -(l_ad * l_ad - xd * xd).max(0.0).sqrt();
-    ((xc - xd).powi(2) + (yc - yd).powi(2)).sqrt()
+    let c = crate::geometry::planar_apex(l_ab, l_ca, l_bc);
+    let d = crate::geometry::planar_apex(l_ab, l_ad, l_db);
+    // c above the shared edge, d mirrored below it.
+    ((c.x - d.x).powi(2) + (c.y + d.y).powi(2)).sqrt()
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::pattern::EdgePattern;
 use crate::clean::is_degenerate_triangle;
 use crate::mesh::TriMesh;
-use crate::par::map_indexed;
+use crate::par;
 
 /// Relative area below which a triangle counts as degenerate for cotangents
 /// (see [`crate::clean::is_degenerate_triangle`]).
@@ -72,7 +72,7 @@ pub fn triangle_cotans(tri: [DVec3; 3]) -> [f64; 3] {
 /// For each half-edge `3 f + k`, the cotangent of the angle opposite to it in
 /// its face (at corner `k + 2`). O(F).
 pub fn halfedge_cotans(mesh: &TriMesh) -> Vec<f64> {
-    let per_face = map_indexed(mesh.face_count(), |f| {
+    let per_face = par::map(mesh.face_count(), |f| {
         let [c0, c1, c2] = triangle_cotans(mesh.triangle(crate::FaceId::new(f)));
         // Half-edge k runs from corner k to k+1; its opposite corner is k+2.
         [c2, c0, c1]
