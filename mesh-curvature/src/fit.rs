@@ -27,7 +27,7 @@ use crate::frame::{solve_spd, tangent_basis, InverseBlock, Sym2};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
-use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
+use mesh_kernel::geometry::NormalWeighting;
 use mesh_kernel::par;
 
 /// Degree of the fitted height field.
@@ -396,7 +396,7 @@ fn height_field_tensor(n: DVec3, t1: DVec3, t2: DVec3, g: [f64; 2], hess: Sym2) 
 /// ill-conditioned), and flags the vertex degenerate when nothing fits. O(sum of neighbourhood sizes), parallel over vertices.
 pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting, options: &FitOptions) -> Result<Vec<LocalTensor>> {
     let nbh = options.neighborhood.validate()?;
-    let nv = vertex_normals(mesh, normals);
+    let nv = mesh.geometry().vertex_normals(normals);
     let adj = Adjacency::new(mesh);
     let status = topological_status(mesh);
     let p = mesh.positions();
@@ -425,7 +425,7 @@ pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting, options: &FitOp
                 g.gather(&adj, p, i, *region);
                 gathered = Some(*region);
             }
-            let Some((mut t, spread)) = fit_vertex(p, &nv, i, &g.vertices, f) else { continue };
+            let Some((mut t, spread)) = fit_vertex(p, nv, i, &g.vertices, f) else { continue };
             if !(t.form.is_finite() && t.normal.is_finite() && t.normal.dot(n) > 0.5) {
                 continue;
             }

@@ -3,12 +3,11 @@
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_kernel::geometry::corner_angles;
 use mesh_kernel::{TriMesh, VertexKind};
 
 use crate::error::Result;
 use crate::status::{topological_status, VertexStatus};
-use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::operators::MassKind;
 use mesh_kernel::par;
 
 /// Options of [`gaussian_curvature`].
@@ -72,7 +71,8 @@ pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<G
 /// [`gaussian_curvature`] in the mesh's own unit.
 fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
     let conn = mesh.connectivity();
-    let (angles, area) = par::join(|| corner_angles(mesh), || lumped_mass(mesh, options.area));
+    let g = mesh.geometry();
+    let (angles, area) = par::join(|| g.corner_angles(), || g.lumped_mass(options.area));
     let sums = par::map(mesh.vertex_count(), |i| {
         let v = mesh_kernel::VertexId::new(i);
         compensated_sum(conn.outgoing(v).iter().map(|h| angles[h.face().idx()][h.corner()]))
@@ -100,7 +100,7 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
             status[i] = VertexStatus::Degenerate;
         }
     }
-    Ok(GaussianCurvature { integrated, geodesic, pointwise, area, status })
+    Ok(GaussianCurvature { integrated, geodesic, pointwise, area: area.to_vec(), status })
 }
 
 /// Neumaier's compensated sum.

@@ -2,13 +2,12 @@
 //! normal of Meyer, Desbrun, Schroeder and Barr 2003.
 
 use glam::DVec3;
-use mesh_kernel::operators::cotan_laplacian;
 use mesh_kernel::TriMesh;
 
 use crate::error::{CurvatureError, Result};
 use crate::status::{topological_status, VertexStatus};
-use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
-use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::geometry::NormalWeighting;
+use mesh_kernel::operators::MassKind;
 use mesh_kernel::par;
 
 /// Options of [`mean_curvature`].
@@ -63,8 +62,8 @@ pub struct MeanCurvature {
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let (normals, (lx, area)) =
-        par::join(|| vertex_normals(&mesh, options.normals), || laplacian_and_area(&mesh, options.area));
-    Ok(assemble(&mesh, lx, area, &normals).in_unit(unit))
+        par::join(|| mesh.geometry().vertex_normals(options.normals), || laplacian_and_area(&mesh, options.area));
+    Ok(assemble(&mesh, lx, area, normals).in_unit(unit))
 }
 
 /// [`mean_curvature`] signed by the given vertex normals instead of a
@@ -105,12 +104,12 @@ fn laplacian_and_area(mesh: &TriMesh, kind: MassKind) -> (Vec<DVec3>, Vec<f64>) 
     let p = mesh.positions();
     par::join(
         || {
-            let l = cotan_laplacian(mesh);
+            let l = mesh.geometry().cotan_laplacian();
             par::map(mesh.vertex_count(), |i| {
                 l.outer_view(i).map_or(DVec3::ZERO, |row| row.iter().map(|(j, w)| *w * p[j]).sum::<DVec3>())
             })
         },
-        || lumped_mass(mesh, kind),
+        || mesh.geometry().lumped_mass(kind).to_vec(),
     )
 }
 

@@ -18,8 +18,8 @@ use crate::frame::Sym2;
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
-use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
-use mesh_kernel::operators::{lumped_mass, MassKind};
+use mesh_kernel::geometry::NormalWeighting;
+use mesh_kernel::operators::MassKind;
 use mesh_kernel::par;
 
 /// A symmetric 3x3 matrix stored as (xx, yy, zz, xy, xz, yz).
@@ -67,9 +67,9 @@ fn vertex_edge_tensors(mesh: &TriMesh) -> Vec<Sym3> {
 
 /// The normal-cycle estimator over `nbh`. O(sum of neighbourhood sizes).
 pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting, nbh: Neighborhood) -> Vec<LocalTensor> {
-    let nv = vertex_normals(mesh, normals);
+    let nv = mesh.geometry().vertex_normals(normals);
     let tensors = vertex_edge_tensors(mesh);
-    let area = lumped_mass(mesh, MassKind::MixedVoronoi);
+    let area = mesh.geometry().lumped_mass(MassKind::MixedVoronoi);
     let adj = Adjacency::new(mesh);
     let status = topological_status(mesh);
     let p = mesh.positions();

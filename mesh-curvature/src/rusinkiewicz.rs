@@ -8,7 +8,7 @@ use mesh_kernel::TriMesh;
 use crate::frame::{rotate_between, solve_spd, Sym2};
 use crate::status::{topological_status, VertexStatus};
 use crate::tensor::LocalTensor;
-use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
+use mesh_kernel::geometry::NormalWeighting;
 use mesh_kernel::operators::mixed_voronoi_corners;
 use mesh_kernel::par;
 
@@ -73,7 +73,7 @@ fn to_vertex_frame(face: &FaceTensor, n: DVec3, t1: DVec3) -> Sym2 {
 /// Rusinkiewicz's estimator: per-face tensors, then a mixed-Voronoi weighted
 /// average at each vertex over its incident faces. O(V + F), parallel.
 pub(crate) fn estimate(mesh: &TriMesh, normals: NormalWeighting) -> Vec<LocalTensor> {
-    let nv = vertex_normals(mesh, normals);
+    let nv = mesh.geometry().vertex_normals(normals);
     let p = mesh.positions();
     let faces = mesh.faces();
     let per_face: Vec<Option<FaceTensor>> = par::map(faces.len(), |f| {

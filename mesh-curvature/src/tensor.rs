@@ -11,7 +11,7 @@ use crate::neighborhood::Neighborhood;
 use crate::normal_cycle;
 use crate::rusinkiewicz;
 use crate::status::VertexStatus;
-use mesh_kernel::geometry::{vertex_normals, NormalWeighting};
+use mesh_kernel::geometry::NormalWeighting;
 
 /// How the curvature tensor is estimated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -188,7 +188,7 @@ fn estimate(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> 
         Method::Rusinkiewicz => rusinkiewicz::estimate(mesh, options.normals),
         Method::NormalCycle(nbh) => normal_cycle::estimate(mesh, options.normals, nbh.validate()?),
     };
-    Ok(assemble(local, &vertex_normals(mesh, NormalWeighting::Area)))
+    Ok(assemble(local, mesh.geometry().vertex_normals(NormalWeighting::Area)))
 }
 
 /// A tensor in a local frame, as the estimators produce it.

@@ -7,6 +7,7 @@
 //! | [`mesh`] | [`TriMesh`]: validated `f64` positions and triangles | 2.2.2 |
 //! | [`ids`] | typed indices [`VertexId`], [`FaceId`], [`EdgeId`], [`HalfedgeId`] | |
 //! | [`connectivity`] | half-edges, edges, ordered 1-rings, boundary loops, components, manifold report, Euler characteristic and genus (eq. 2.6-2.7) | 2.2.2, 2.3 |
+//! | [`cache`] | [`Geometry`]: derived quantities (areas, angles, normals, masses, Laplacians, gradient, divergence) computed once per mesh on first use, shared by every crate | |
 //! | [`choice`] | named choices: one list of names per selectable enum, parsed and displayed alike | |
 //! | [`clean`] | welding, degenerate / duplicate / unreferenced removal, orientation, with a report | |
 //! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |
@@ -46,6 +47,7 @@
 //! user can feed in panics: invalid input is a [`MeshError`].
 #![deny(missing_docs)]
 
+pub mod cache;
 pub mod choice;
 pub mod clean;
 pub mod connectivity;
@@ -62,6 +64,7 @@ pub mod submesh;
 pub mod union_find;
 pub mod units;
 
+pub use cache::Geometry;
 pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
 pub use error::{MeshError, NonManifoldReport, Result};
 pub use ids::{EdgeId, FaceId, HalfedgeId, VertexId};

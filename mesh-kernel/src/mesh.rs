@@ -2,6 +2,8 @@
 
 use std::sync::OnceLock;
 
+use crate::cache::{Cache, Geometry};
+
 use glam::DVec3;
 
 use crate::connectivity::Connectivity;
@@ -24,6 +26,7 @@ pub struct TriMesh {
     positions: Vec<DVec3>,
     faces: Vec<[u32; 3]>,
     connectivity: OnceLock<Connectivity>,
+    geometry: Cache,
 }
 
 impl TriMesh {
@@ -61,7 +64,7 @@ impl TriMesh {
                 return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(b) });
             }
         }
-        Ok(Self { positions, faces, connectivity: OnceLock::new() })
+        Ok(Self { positions, faces, connectivity: OnceLock::new(), geometry: Cache::default() })
     }
 
     /// Builds a mesh from flat coordinate and index arrays (`xyz` holds three
@@ -89,9 +92,11 @@ impl TriMesh {
     }
 
     /// Mutable vertex positions. The cached connectivity stays valid, since it
-    /// depends only on the triangles. Callers must keep coordinates finite.
+    /// depends only on the triangles; the cached geometry ([`TriMesh::geometry`])
+    /// is dropped. Callers must keep coordinates finite.
     #[inline]
     pub fn positions_mut(&mut self) -> &mut [DVec3] {
+        self.geometry = Cache::default();
         &mut self.positions
     }
 
@@ -113,6 +118,7 @@ impl TriMesh {
             return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
         }
         self.positions = positions;
+        self.geometry = Cache::default();
         Ok(())
     }
 
@@ -179,6 +185,20 @@ impl TriMesh {
         let c = self.connectivity();
         c.require_manifold()?;
         Ok(c)
+    }
+
+    /// The derived quantities of this mesh (areas, angles, normals, masses,
+    /// Laplacians, gradient, divergence), each computed on first use and
+    /// kept until the vertices move: see [`crate::cache`].
+    pub fn geometry(&self) -> Geometry<'_> {
+        Geometry::new(self, &self.geometry)
+    }
+
+    /// Frees the stored derived quantities (a cotangent Laplacian of a
+    /// million vertices holds about 110 MB); they are computed again when
+    /// asked for.
+    pub fn forget_geometry(&mut self) {
+        self.geometry = Cache::default();
     }
 
     /// Gives back positions and triangles.

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
+use mesh_kernel::operators::{LaplacianKind, MassKind};
 use mesh_kernel::TriMesh;
 use sprs::CsMat;
 
@@ -79,13 +79,9 @@ pub fn pencil(mesh: &TriMesh, laplacian: LaplacianKind, mass: MassKind) -> Resul
     }
     let start = Instant::now();
     let (kind, degenerate_faces) = laplacian.resolve(mesh);
-    let l = match kind {
-        LaplacianKind::IntrinsicDelaunay => {
-            IntrinsicTriangulation::delaunay(mesh, &IntrinsicOptions::default())?.cotan_laplacian()
-        }
-        _ => operators::cotan_laplacian(mesh),
-    };
-    let m = operators::lumped_mass(mesh, mass);
+    // From the mesh's cache: shared with any other analysis of the same mesh.
+    let l = mesh.geometry().laplacian(kind)?.clone();
+    let m = mesh.geometry().lumped_mass(mass).to_vec();
     let info = OperatorInfo {
         requested: laplacian,
         laplacian: kind,

@@ -52,7 +52,7 @@ mod far;
 mod status;
 
 use mesh_kernel::glam::DVec2;
-use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
+use mesh_kernel::operators::{IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
 use mesh_kernel::solver::Cholesky;
 use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
@@ -192,7 +192,8 @@ impl HeatGeodesics {
         let n = mesh.vertex_count();
         let extrinsic = || {
             let faces = extrinsic_faces(mesh);
-            (faces, operators::cotan_laplacian(mesh), operators::lumped_mass(mesh, MassKind::Barycentric))
+            let g = mesh.geometry();
+            (faces, g.cotan_laplacian().clone(), g.lumped_mass(MassKind::Barycentric).to_vec())
         };
         let kind = match options.laplacian {
             LaplacianKind::Auto => options.laplacian.resolve(mesh).0,
@@ -201,7 +202,13 @@ impl HeatGeodesics {
         let (faces, laplacian, mass) = match kind {
             LaplacianKind::Cotan => extrinsic(),
             LaplacianKind::Auto | LaplacianKind::IntrinsicDelaunay => {
-                let t = IntrinsicTriangulation::delaunay(mesh, &options.intrinsic)?;
+                let own;
+                let t = if options.intrinsic == IntrinsicOptions::default() {
+                    mesh.geometry().intrinsic_delaunay()?
+                } else {
+                    own = IntrinsicTriangulation::delaunay(mesh, &options.intrinsic)?;
+                    &own
+                };
                 if t.flip_count() == 0 && unchanged_lengths(mesh, &t.lengths()) {
                     // Already Delaunay and not mollified: the same operator,
                     // assembled faster from the mesh's edges.

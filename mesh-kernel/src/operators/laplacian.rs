@@ -52,6 +52,14 @@ impl LaplacianKind {
         };
         (kind, degenerate)
     }
+
+    /// `self`, or what `Auto` stands for on `mesh` (see [`LaplacianKind::resolve`]).
+    pub fn resolve_if_auto(self, mesh: &TriMesh) -> Self {
+        match self {
+            Self::Auto => self.resolve(mesh).0,
+            other => other,
+        }
+    }
 }
 
 /// Cotangents of the three angles of a triangle, `[k]` at corner `k`, or zeros

@@ -3,6 +3,7 @@
 //! - [`adjacency_matrix`] (eq. 2.5) and [`uniform_laplacian`] (eq. 2.12);
 //! - [`cotan_laplacian`] (eq. 2.15) and the weights behind it;
 //! - [`mass`]: barycentric, mixed Voronoi (Meyer et al. 2003) and Galerkin;
+//! - [`gradient`] and [`divergence`] of piecewise-linear functions (`L = D G`);
 //! - [`intrinsic`]: intrinsic Delaunay triangulation by edge flips and its
 //!   Laplacian, whose weights are never negative.
 //!
@@ -10,11 +11,13 @@
 //! `L_ij = -w_ij` (geometry-central's convention; libigl's `cotmatrix` is `-L`).
 //! All assembly works on non-manifold input: it only needs triangles.
 
+pub mod gradient;
 pub mod intrinsic;
 pub mod laplacian;
 pub mod mass;
 mod pattern;
 
+pub use gradient::{divergence, gradient};
 pub use intrinsic::{IntrinsicOptions, IntrinsicTriangulation};
 pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans, LaplacianKind};
 pub use mass::{lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};

@@ -1,0 +1,163 @@
+//! Derived quantities of a mesh, computed once on first use and kept with
+//! it (in the spirit of geometry-central's `require*` quantities): every
+//! crate that asks [`TriMesh::geometry`] for face areas, angles, normals,
+//! lumped masses, cotangents, Laplacians, gradient or divergence gets the
+//! same values, computed once. Moving vertices
+//! ([`TriMesh::positions_mut`], [`TriMesh::set_positions`]) empties the
+//! cache; [`TriMesh::forget_geometry`] frees it.
+//!
+//! ```
+//! use mesh_kernel::{operators::MassKind, shapes};
+//!
+//! let mesh = shapes::icosphere(3)?;
+//! let g = mesh.geometry();
+//! let area: f64 = g.face_areas().iter().sum();
+//! let mass: f64 = g.lumped_mass(MassKind::MixedVoronoi).iter().sum();
+//! assert!((area - mass).abs() < 1e-12 * area);
+//! // The second request is the same memory, not a second computation.
+//! assert!(std::ptr::eq(g.cotan_laplacian(), mesh.geometry().cotan_laplacian()));
+//! # Ok::<(), mesh_kernel::MeshError>(())
+//! ```
+
+use std::sync::OnceLock;
+
+use glam::DVec3;
+use sprs::CsMat;
+
+use crate::choice::Choice;
+use crate::error::Result;
+use crate::geometry::{self, NormalWeighting};
+use crate::mesh::TriMesh;
+use crate::operators::{self, IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
+
+/// The stored quantities; empty until asked for.
+#[derive(Clone, Default)]
+pub(crate) struct Cache {
+    face_areas: OnceLock<Vec<f64>>,
+    face_normals: OnceLock<Vec<DVec3>>,
+    corner_angles: OnceLock<Vec<[f64; 3]>>,
+    vertex_normals: [OnceLock<Vec<DVec3>>; 4],
+    lumped_mass: [OnceLock<Vec<f64>>; 3],
+    halfedge_cotans: OnceLock<Vec<f64>>,
+    cotan_laplacian: OnceLock<CsMat<f64>>,
+    intrinsic: OnceLock<Result<IntrinsicTriangulation>>,
+    intrinsic_laplacian: OnceLock<CsMat<f64>>,
+    gradient: OnceLock<CsMat<f64>>,
+    divergence: OnceLock<CsMat<f64>>,
+}
+
+/// The derived quantities of one mesh ([`TriMesh::geometry`]). Each method
+/// computes its quantity on the first call (the cost is that of the free
+/// function it names) and returns the stored one afterwards, in O(1).
+#[derive(Clone, Copy)]
+pub struct Geometry<'a> {
+    mesh: &'a TriMesh,
+    cache: &'a Cache,
+}
+
+/// Slot of a variant in a per-variant array.
+fn slot<T: Choice>(v: T) -> usize {
+    T::ALL.iter().position(|x| *x == v).unwrap_or(0)
+}
+
+impl<'a> Geometry<'a> {
+    pub(crate) fn new(mesh: &'a TriMesh, cache: &'a Cache) -> Self {
+        Self { mesh, cache }
+    }
+
+    /// Area of every face ([`geometry::face_areas`]).
+    pub fn face_areas(&self) -> &'a [f64] {
+        self.cache.face_areas.get_or_init(|| geometry::face_areas(self.mesh))
+    }
+
+    /// Unit normal of every face, zero on zero-area faces ([`geometry::face_normals`]).
+    pub fn face_normals(&self) -> &'a [DVec3] {
+        self.cache.face_normals.get_or_init(|| geometry::face_normals(self.mesh))
+    }
+
+    /// The three corner angles of every face, summing to pi ([`geometry::corner_angles`]).
+    pub fn corner_angles(&self) -> &'a [[f64; 3]] {
+        self.cache.corner_angles.get_or_init(|| geometry::corner_angles(self.mesh))
+    }
+
+    /// Unit vertex normals with the given weighting ([`geometry::vertex_normals`]).
+    pub fn vertex_normals(&self, weighting: NormalWeighting) -> &'a [DVec3] {
+        self.cache.vertex_normals[slot(weighting)].get_or_init(|| geometry::vertex_normals(self.mesh, weighting))
+    }
+
+    /// Lumped vertex areas of the given kind ([`operators::lumped_mass`]).
+    pub fn lumped_mass(&self, kind: MassKind) -> &'a [f64] {
+        self.cache.lumped_mass[slot(kind)].get_or_init(|| operators::lumped_mass(self.mesh, kind))
+    }
+
+    /// The cotangent opposite every half-edge `3 f + k` ([`operators::halfedge_cotans`]).
+    pub fn halfedge_cotans(&self) -> &'a [f64] {
+        self.cache.halfedge_cotans.get_or_init(|| operators::halfedge_cotans(self.mesh))
+    }
+
+    /// The mesh's cotangent Laplacian ([`operators::cotan_laplacian`]).
+    pub fn cotan_laplacian(&self) -> &'a CsMat<f64> {
+        self.cache.cotan_laplacian.get_or_init(|| operators::cotan_laplacian(self.mesh))
+    }
+
+    /// The intrinsic Delaunay triangulation with [`IntrinsicOptions::default`]
+    /// ([`IntrinsicTriangulation::delaunay`]).
+    ///
+    /// # Errors
+    /// Those of [`IntrinsicTriangulation::delaunay`] (kept: asking again gives the same error).
+    pub fn intrinsic_delaunay(&self) -> Result<&'a IntrinsicTriangulation> {
+        let stored = self
+            .cache
+            .intrinsic
+            .get_or_init(|| IntrinsicTriangulation::delaunay(self.mesh, &IntrinsicOptions::default()));
+        stored.as_ref().map_err(Clone::clone)
+    }
+
+    /// The Laplacian of the given kind: the cotangent one, or that of the
+    /// intrinsic Delaunay triangulation; [`LaplacianKind::Auto`] is resolved
+    /// by [`LaplacianKind::resolve`] (O(F) each time).
+    ///
+    /// # Errors
+    /// Those of [`Geometry::intrinsic_delaunay`].
+    pub fn laplacian(&self, kind: LaplacianKind) -> Result<&'a CsMat<f64>> {
+        match kind.resolve_if_auto(self.mesh) {
+            LaplacianKind::Cotan => Ok(self.cotan_laplacian()),
+            _ => {
+                let t = self.intrinsic_delaunay()?;
+                Ok(self.cache.intrinsic_laplacian.get_or_init(|| t.cotan_laplacian()))
+            }
+        }
+    }
+
+    /// The face-wise gradient of piecewise-linear functions ([`operators::gradient`]).
+    pub fn gradient(&self) -> &'a CsMat<f64> {
+        self.cache.gradient.get_or_init(|| operators::gradient(self.mesh))
+    }
+
+    /// The integrated divergence of face-wise vector fields ([`operators::divergence`]).
+    pub fn divergence(&self) -> &'a CsMat<f64> {
+        self.cache.divergence.get_or_init(|| operators::divergence(self.mesh))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::operators::{self, LaplacianKind, MassKind};
+    use crate::shapes;
+
+    #[test]
+    fn cached_quantities_equal_the_free_functions_and_are_dropped_when_vertices_move() {
+        let mut m = shapes::irregular_torus(2.0, 0.7, 20, 12, 0.3, 3).unwrap();
+        let g = m.geometry();
+        assert_eq!(g.lumped_mass(MassKind::Barycentric), &operators::lumped_mass(&m, MassKind::Barycentric)[..]);
+        assert_eq!(g.laplacian(LaplacianKind::Cotan).unwrap(), &operators::cotan_laplacian(&m));
+        let first = g.face_areas().to_vec();
+        m.positions_mut().iter_mut().for_each(|p| *p *= 2.0);
+        let again = m.geometry().face_areas().to_vec();
+        for (a, b) in first.iter().zip(&again) {
+            assert!((4.0 * a - b).abs() <= 1e-12 * b);
+        }
+        let copy = m.clone();
+        assert_eq!(copy.geometry().face_areas(), m.geometry().face_areas());
+    }
+}
