@@ -16,7 +16,11 @@ fn random_grid() -> impl Strategy<Value = TriMesh> {
             Just((nx, ny)),
             proptest::collection::vec(any::<bool>(), cells),
             proptest::collection::vec(0u8..10, cells),
-            proptest::collection::vec((-0.3f64..0.3, -0.3f64..0.3), (nx + 1) * (ny + 1)),
+            // At most 0.2 per coordinate: a vertex moves less than 0.29, so the
+            // distance 0.71 from a corner to the opposite diagonal cannot close
+            // (two vertices moving 0.3 apart could fold a triangle over, and
+            // linear precision holds only for unfolded planar meshes).
+            proptest::collection::vec((-0.2f64..0.2, -0.2f64..0.2), (nx + 1) * (ny + 1)),
         )
             .prop_map(|((nx, ny), diagonal, keep, jitter)| {
                 let w = nx + 1;
