@@ -5,6 +5,7 @@
 use glam::{DVec2, DVec3};
 use mesh_kernel::TriMesh;
 
+use crate::attribute::{Attribute, AttributeElement, AttributeValues};
 use crate::error::{IoError, Location, Result};
 
 /// A mesh as read from a file, with the attributes the file carried.
@@ -14,6 +15,11 @@ use crate::error::{IoError, Location, Result};
 /// has a single one, and per face corner ([`MeshData::corner_uvs`]) when the
 /// file has UV seams (a vertex with different coordinates in different
 /// faces). Colours are linear RGBA in `[0, 1]`.
+///
+/// Named attributes ([`crate::attribute`]) come as lists of `(name, values)`
+/// by element and kind: per vertex `scalars`, `vectors` and `labels`, per
+/// face `face_scalars`, `face_vectors` and `face_labels`; a reader that
+/// splits polygons into triangles gives each triangle its polygon's value.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshData {
     /// Positions and triangles.
@@ -26,8 +32,21 @@ pub struct MeshData {
     pub corner_uvs: Option<Vec<[DVec2; 3]>>,
     /// Per-vertex RGBA colours in `[0, 1]`.
     pub colors: Option<Vec<[f32; 4]>>,
-    /// Named per-vertex scalar fields (PLY properties, glTF `_NAME` attributes).
+    /// Named per-vertex scalar fields (PLY `float`/`double` properties, glTF
+    /// `_NAME` float `SCALAR` attributes).
     pub scalars: Vec<(String, Vec<f64>)>,
+    /// Named per-vertex 3-vectors (PLY `NAMEx NAMEy NAMEz` or `NAME_x NAME_y
+    /// NAME_z` float property triples, glTF `_NAME` `VEC3` attributes).
+    pub vectors: Vec<(String, Vec<DVec3>)>,
+    /// Named per-vertex integer labels (PLY integer properties, glTF `_NAME`
+    /// integer `SCALAR` attributes).
+    pub labels: Vec<(String, Vec<i64>)>,
+    /// Named per-face scalar fields (PLY `face` element properties).
+    pub face_scalars: Vec<(String, Vec<f64>)>,
+    /// Named per-face 3-vectors (PLY `face` element property triples).
+    pub face_vectors: Vec<(String, Vec<DVec3>)>,
+    /// Named per-face integer labels (PLY `face` element integer properties).
+    pub face_labels: Vec<(String, Vec<i64>)>,
     /// What the reader changed while building the mesh (empty when built in memory).
     pub report: ReadReport,
 }
@@ -37,8 +56,12 @@ impl MeshData {
     /// a NaN or an infinity (a file's `nan`, `inf` or `1e309`), with a note
     /// in the read report naming the first bad element: positions are
     /// refused by the readers, attributes are optional, and no NaN leaves
-    /// a reader. Named scalars are the file's own data and are kept. O(V).
+    /// a reader unannounced. Named scalars and vectors are the file's own
+    /// data (NaN may mean "no value" there): they are kept, with a note
+    /// counting their non-finite values. O(V + F).
     pub fn without_non_finite_attributes(mut self) -> Self {
+        let notes: Vec<String> = self.attributes().iter().filter_map(non_finite_note).collect();
+        self.report.notes.extend(notes);
         let mut drop = |what: &str, first: Option<usize>| {
             if let Some(i) = first {
                 self.report.notes.push(format!("{what} dropped: {what} of element {i} is not finite"));
@@ -73,13 +96,58 @@ impl MeshData {
             corner_uvs: None,
             colors: None,
             scalars: Vec::new(),
+            vectors: Vec::new(),
+            labels: Vec::new(),
+            face_scalars: Vec::new(),
+            face_vectors: Vec::new(),
+            face_labels: Vec::new(),
             report: ReadReport::default(),
         }
     }
 
-    /// The named per-vertex scalar field, if present.
+    /// The named per-vertex scalar field, if present. O(number of fields).
     pub fn scalar(&self, name: &str) -> Option<&[f64]> {
-        self.scalars.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_slice())
+        find(&self.scalars, name)
+    }
+
+    /// The named per-vertex vector field, if present. O(number of fields).
+    pub fn vector(&self, name: &str) -> Option<&[DVec3]> {
+        find(&self.vectors, name)
+    }
+
+    /// The named per-vertex label, if present. O(number of fields).
+    pub fn label(&self, name: &str) -> Option<&[i64]> {
+        find(&self.labels, name)
+    }
+
+    /// The named per-face scalar field, if present. O(number of fields).
+    pub fn face_scalar(&self, name: &str) -> Option<&[f64]> {
+        find(&self.face_scalars, name)
+    }
+
+    /// The named per-face vector field, if present. O(number of fields).
+    pub fn face_vector(&self, name: &str) -> Option<&[DVec3]> {
+        find(&self.face_vectors, name)
+    }
+
+    /// The named per-face label, if present. O(number of fields).
+    pub fn face_label(&self, name: &str) -> Option<&[i64]> {
+        find(&self.face_labels, name)
+    }
+
+    /// Every named attribute (per-vertex scalars, vectors and labels, then
+    /// per-face ones), with its element, kind and values. O(number of fields).
+    pub fn attributes(&self) -> Vec<Attribute<'_>> {
+        use AttributeElement::{Face, Vertex};
+        use AttributeValues::{Label, Scalar, Vector};
+        let mut out = Vec::new();
+        out.extend(named(&self.scalars, Vertex, Scalar));
+        out.extend(named(&self.vectors, Vertex, Vector));
+        out.extend(named(&self.labels, Vertex, Label));
+        out.extend(named(&self.face_scalars, Face, Scalar));
+        out.extend(named(&self.face_vectors, Face, Vector));
+        out.extend(named(&self.face_labels, Face, Label));
+        out
     }
 
     /// A borrowed view for the writers.
@@ -90,9 +158,35 @@ impl MeshData {
             uvs: self.uvs.as_deref(),
             corner_uvs: self.corner_uvs.as_deref(),
             colors: self.colors.as_deref(),
-            scalars: self.scalars.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect(),
+            attributes: self.attributes(),
         }
     }
+}
+
+/// The fields of one list as attributes.
+fn named<'a, T>(
+    fields: &'a [(String, Vec<T>)],
+    element: AttributeElement,
+    values: fn(&'a [T]) -> AttributeValues<'a>,
+) -> impl Iterator<Item = Attribute<'a>> {
+    fields.iter().map(move |(name, v)| Attribute { name, element, values: values(v) })
+}
+
+/// The values of the field named `name`.
+fn find<'a, T>(fields: &'a [(String, Vec<T>)], name: &str) -> Option<&'a [T]> {
+    fields.iter().find(|(n, _)| n == name).map(|(_, v)| v.as_slice())
+}
+
+/// A note for a scalar or vector attribute with NaN or infinite values:
+/// how many, and the first element.
+fn non_finite_note(a: &Attribute<'_>) -> Option<String> {
+    let bad: Vec<usize> = match a.values {
+        AttributeValues::Scalar(v) => v.iter().enumerate().filter(|(_, x)| !x.is_finite()).map(|(i, _)| i).collect(),
+        AttributeValues::Vector(v) => v.iter().enumerate().filter(|(_, x)| !x.is_finite()).map(|(i, _)| i).collect(),
+        AttributeValues::Label(_) => Vec::new(),
+    };
+    let first = *bad.first()?;
+    Some(format!("{a}: {} values are not finite (first of {} {first}), kept as read", bad.len(), a.element))
 }
 
 impl From<TriMesh> for MeshData {
@@ -193,13 +287,16 @@ impl ReadReport {
 /// # use mesh_io::MeshView;
 /// # let mesh = mesh_kernel::TriMesh::new(vec![mesh_kernel::glam::DVec3::ZERO; 3], vec![])?;
 /// let mean = vec![0.0; mesh.vertex_count()];
-/// let view = MeshView::new(&mesh).with_scalar("mean", &mean);
-/// assert_eq!(view.scalars.len(), 1);
+/// let d1 = vec![mesh_kernel::glam::DVec3::X; mesh.vertex_count()];
+/// let chart = vec![0i64; mesh.face_count()];
+/// let view = MeshView::new(&mesh).with_scalar("mean", &mean).with_vector("d1", &d1).with_face_label("chart", &chart);
+/// assert_eq!(view.attributes.len(), 3);
+/// assert_eq!(view.attributes[1].to_string(), "vertex vector `d1`");
 /// # Ok::<(), mesh_kernel::MeshError>(())
 /// ```
 ///
 /// Each writer keeps what its format can hold (see the crate's format table)
-/// and leaves out the rest.
+/// and names the rest in [`crate::WriteReport::dropped`].
 #[derive(Debug, Clone)]
 pub struct MeshView<'a> {
     /// Positions and triangles.
@@ -212,14 +309,15 @@ pub struct MeshView<'a> {
     pub corner_uvs: Option<&'a [[DVec2; 3]]>,
     /// Per-vertex RGBA colours in `[0, 1]`.
     pub colors: Option<&'a [[f32; 4]]>,
-    /// Named per-vertex scalar fields.
-    pub scalars: Vec<(&'a str, &'a [f64])>,
+    /// Named per-vertex and per-face attributes, in the order they are
+    /// written (PLY property order).
+    pub attributes: Vec<Attribute<'a>>,
 }
 
 impl<'a> MeshView<'a> {
     /// A view of the mesh alone.
     pub fn new(mesh: &'a TriMesh) -> Self {
-        Self { mesh, normals: None, uvs: None, corner_uvs: None, colors: None, scalars: Vec::new() }
+        Self { mesh, normals: None, uvs: None, corner_uvs: None, colors: None, attributes: Vec::new() }
     }
 
     /// Adds per-vertex normals.
@@ -246,18 +344,59 @@ impl<'a> MeshView<'a> {
         self
     }
 
-    /// Adds a named per-vertex scalar field.
-    pub fn with_scalar(mut self, name: &'a str, values: &'a [f64]) -> Self {
-        self.scalars.push((name, values));
+    /// Adds a named attribute.
+    pub fn with_attribute(mut self, name: &'a str, element: AttributeElement, values: AttributeValues<'a>) -> Self {
+        self.attributes.push(Attribute { name, element, values });
         self
     }
 
+    /// Adds a named per-vertex scalar field.
+    pub fn with_scalar(self, name: &'a str, values: &'a [f64]) -> Self {
+        self.with_attribute(name, AttributeElement::Vertex, AttributeValues::Scalar(values))
+    }
+
+    /// Adds a named per-vertex vector field (PLY `NAMEx NAMEy NAMEz`).
+    pub fn with_vector(self, name: &'a str, values: &'a [DVec3]) -> Self {
+        self.with_attribute(name, AttributeElement::Vertex, AttributeValues::Vector(values))
+    }
+
+    /// Adds a named per-vertex integer label.
+    pub fn with_label(self, name: &'a str, values: &'a [i64]) -> Self {
+        self.with_attribute(name, AttributeElement::Vertex, AttributeValues::Label(values))
+    }
+
+    /// Adds a named per-face scalar field.
+    pub fn with_face_scalar(self, name: &'a str, values: &'a [f64]) -> Self {
+        self.with_attribute(name, AttributeElement::Face, AttributeValues::Scalar(values))
+    }
+
+    /// Adds a named per-face vector field.
+    pub fn with_face_vector(self, name: &'a str, values: &'a [DVec3]) -> Self {
+        self.with_attribute(name, AttributeElement::Face, AttributeValues::Vector(values))
+    }
+
+    /// Adds a named per-face integer label.
+    pub fn with_face_label(self, name: &'a str, values: &'a [i64]) -> Self {
+        self.with_attribute(name, AttributeElement::Face, AttributeValues::Label(values))
+    }
+
+    /// The named per-vertex scalar fields, in order.
+    pub fn scalars(&self) -> impl Iterator<Item = (&'a str, &'a [f64])> + '_ {
+        self.attributes.iter().filter_map(|a| match (a.element, a.values) {
+            (AttributeElement::Vertex, AttributeValues::Scalar(v)) => Some((a.name, v)),
+            _ => None,
+        })
+    }
+
     /// Checks that every attribute has one entry per vertex (per face for
-    /// corner UVs); writers call this first.
+    /// corner UVs and face attributes) and that no name is used twice for
+    /// the same element; writers call this first. O(V + F + a^2) for `a`
+    /// named attributes.
     ///
     /// # Errors
     /// `IoError::AttributeLength` naming the first attribute whose length is not the vertex count (the face
-    /// count for corner UVs).
+    /// count for corner UVs and face attributes); `IoError::AttributeName` for an empty name or a name given
+    /// twice to the same element.
     pub fn check(&self) -> Result<()> {
         let (nv, nf) = (self.mesh.vertex_count(), self.mesh.face_count());
         let mut lengths = vec![
@@ -266,13 +405,27 @@ impl<'a> MeshView<'a> {
             ("corner_uvs".to_owned(), self.corner_uvs.map(<[_]>::len), nf),
             ("colors".to_owned(), self.colors.map(<[_]>::len), nv),
         ];
-        lengths.extend(self.scalars.iter().map(|(n, v)| (format!("scalar `{n}`"), Some(v.len()), nv)));
-        match lengths.into_iter().find(|(_, found, expected)| found.is_some_and(|f| f != *expected)) {
-            Some((what, found, expected)) => {
-                Err(IoError::AttributeLength { what, expected, found: found.unwrap_or_default() })
-            }
-            None => Ok(()),
+        let count = |a: &Attribute<'_>| match a.element {
+            AttributeElement::Vertex => nv,
+            AttributeElement::Face => nf,
+        };
+        lengths.extend(self.attributes.iter().map(|a| (a.to_string(), Some(a.values.len()), count(a))));
+        if let Some((what, found, expected)) =
+            lengths.into_iter().find(|(_, found, expected)| found.is_some_and(|f| f != *expected))
+        {
+            return Err(IoError::AttributeLength { what, expected, found: found.unwrap_or_default() });
         }
+        for (i, a) in self.attributes.iter().enumerate() {
+            let problem = if a.name.is_empty() {
+                "an attribute needs a name"
+            } else if self.attributes[..i].iter().any(|b| b.element == a.element && b.name == a.name) {
+                "the name is given twice to the same element"
+            } else {
+                continue;
+            };
+            return Err(IoError::AttributeName { what: a.to_string(), problem: problem.into() });
+        }
+        Ok(())
     }
 }
 
@@ -341,7 +494,15 @@ mod tests {
         let mesh = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
         let short = [0.0; 2];
         let e = MeshView::new(&mesh).with_scalar("k", &short).check().unwrap_err();
-        assert_eq!(e.to_string(), "scalar `k` has 2 entries, expected 3");
+        assert_eq!(e.to_string(), "vertex scalar `k` has 2 entries, expected 3");
+        let (faces, two) = ([7i64], [0i64; 2]);
+        let e = MeshView::new(&mesh).with_face_label("chart", &faces).with_label("chart", &two);
+        assert!(matches!(e.check(), Err(IoError::AttributeLength { expected: 3, found: 2, .. })));
+        let twice = [0.0; 3];
+        let e = MeshView::new(&mesh).with_scalar("k", &twice).with_scalar("k", &twice).check().unwrap_err();
+        assert!(matches!(e, IoError::AttributeName { .. }) && e.to_string().contains("twice"), "{e}");
+        let view = MeshView::new(&mesh).with_scalar("k", &twice).with_face_label("k", &faces);
+        assert!(view.check().is_ok(), "one name per element");
         assert!(MeshData::new(mesh).view().check().is_ok());
     }
 

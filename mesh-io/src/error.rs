@@ -149,12 +149,21 @@ pub enum IoError {
     /// An attribute handed to a writer has the wrong length.
     #[error("{what} has {found} entries, expected {expected}")]
     AttributeLength {
-        /// The attribute (`"normals"`, `"scalar `mean`"`, ...).
+        /// The attribute (`"normals"`, `"vertex scalar `mean`"`, ...).
         what: String,
-        /// One per vertex, or per face for corner UVs.
+        /// One per vertex, or per face for corner UVs and face attributes.
         expected: usize,
         /// What was given.
         found: usize,
+    },
+    /// A named attribute handed to a writer has an empty name or shares its
+    /// name with another attribute of the same element.
+    #[error("{what}: {problem}")]
+    AttributeName {
+        /// The attribute (`"vertex scalar `mean`"`, ...).
+        what: String,
+        /// What is wrong with its name.
+        problem: String,
     },
     /// A glTF buffer `uri` that may not be read: not a `data:` URI or a
     /// relative path to a regular file inside the `.gltf` file's folder, or a
@@ -239,7 +248,10 @@ impl IoError {
             | Self::Precision { at, .. } => Some(at),
             #[cfg(feature = "gltf")]
             Self::Gltf { at, .. } => Some(at),
-            Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
+            Self::Io { .. }
+            | Self::UnknownFormat { .. }
+            | Self::AttributeLength { .. }
+            | Self::AttributeName { .. } => None,
         }
     }
 
@@ -257,7 +269,10 @@ impl IoError {
             | Self::Precision { at, .. } => Some(at),
             #[cfg(feature = "gltf")]
             Self::Gltf { at, .. } => Some(at),
-            Self::Io { .. } | Self::UnknownFormat { .. } | Self::AttributeLength { .. } => None,
+            Self::Io { .. }
+            | Self::UnknownFormat { .. }
+            | Self::AttributeLength { .. }
+            | Self::AttributeName { .. } => None,
         }
     }
 

@@ -15,7 +15,7 @@ use crate::gltf;
 use crate::ply::PlyOptions;
 use crate::precision::{self, Narrowed, WriteReport};
 use crate::stl::StlEncoding;
-use crate::{obj, off, ply, stl};
+use crate::{obj, off, ply, stl, support};
 
 /// Options of [`read_with`] and [`read_from`].
 #[derive(Debug, Clone, PartialEq)]
@@ -144,17 +144,22 @@ pub fn write<'a>(path: impl AsRef<Path>, data: impl Into<MeshView<'a>>, options:
 /// Writes a mesh in the given format to any writer. Values that STL (binary),
 /// glTF/GLB and PLY with `float` properties store as 32-bit floats are
 /// checked first ([`crate::precision`]); the [`WriteReport`] says how much
-/// they were rounded. (The per-format functions, [`stl::write`] and the
+/// they were rounded, and names what the format cannot store
+/// ([`WriteReport::dropped`]: per-face attributes in glTF, named attributes
+/// in OBJ, OFF and STL, ...). (The per-format functions, [`stl::write`] and the
 /// like, narrow without this check.)
 ///
 /// # Errors
 /// [`IoError::AttributeLength`] when an attribute of the view does not have
-/// one entry per vertex (per face for corner UVs); [`IoError::Precision`]
+/// one entry per vertex (per face for corner UVs and face attributes);
+/// [`IoError::AttributeName`] for an empty name or one given twice to the
+/// same element; [`IoError::Precision`]
 /// when a value would become infinite or zero in a 32-bit format, naming the
 /// vertex (unless [`WriteOptions::allow_precision_loss`]);
 /// [`IoError::Unsupported`] for what the format cannot hold at all (vertices
-/// without faces in STL, PLY scalar names that are not words, more than
-/// 2^32 STL triangles); [`IoError::Io`] when the writer fails.
+/// without faces in STL, PLY attribute names that are not words or clash
+/// with other properties, PLY labels beyond 32-bit integers, more than 2^32
+/// STL triangles); [`IoError::Io`] when the writer fails.
 pub fn write_to<'a, W: Write>(
     out: W,
     format: Format,
@@ -163,7 +168,8 @@ pub fn write_to<'a, W: Write>(
 ) -> Result<WriteReport> {
     let view = data.into();
     view.check()?;
-    let report = precision::check(&view, narrowed(format, options), format, options.allow_precision_loss)?;
+    let mut report = precision::check(&view, narrowed(format, options), format, options.allow_precision_loss)?;
+    report.dropped = support::dropped(format, &view);
     match format {
         Format::Obj => obj::write(out, &view),
         Format::Off => off::write(out, &view),
@@ -193,11 +199,11 @@ fn without_gltf(format: Format) -> IoError {
 
 /// The parts of a view `format` stores as 32-bit floats.
 fn narrowed(format: Format, options: &WriteOptions) -> Narrowed {
-    let all = Narrowed { positions: true, normals: true, uvs: true, scalars: true };
+    let all = Narrowed { positions: true, normals: true, uvs: true, attributes: true };
     match format {
         Format::Gltf | Format::Glb => all,
         Format::Stl if options.stl == StlEncoding::Binary => Narrowed { positions: true, ..Narrowed::default() },
-        Format::Ply if !options.ply.double => Narrowed { scalars: false, ..all },
+        Format::Ply if !options.ply.double => Narrowed { attributes: false, ..all },
         Format::Obj | Format::Off | Format::Stl | Format::Ply => Narrowed::default(),
     }
 }

@@ -7,8 +7,12 @@
 //! normals (winding flipped under mirroring transforms). Primitives are
 //! concatenated without welding. Attributes kept: `NORMAL`, `TEXCOORD_0` (v
 //! flipped to the OBJ/PLY convention `v = 1 - v_gltf`), `COLOR_0`, and
-//! application-specific scalar attributes `_NAME` as scalars `NAME`; an
-//! attribute is kept only when every primitive has it. A scene with no
+//! application-specific attributes `_NAME` as named attributes `NAME`
+//! ([`crate::attribute`]): a `SCALAR` of floats (or normalized integers) as
+//! a scalar, of integers as a label, a `VEC3` as a vector (not transformed
+//! by the nodes: its meaning is the application's); other shapes are
+//! skipped with a note. An attribute is kept only when every primitive has
+//! it with the same kind. A scene with no
 //! triangle primitive reads its `POINTS` primitives as vertices without
 //! faces (what the writer makes of a mesh without faces). Buffers come from the
 //! GLB `BIN` chunk, `data:` URIs, or files next to the `.gltf` (given a base
@@ -17,8 +21,14 @@
 //!
 //! Writing produces one mesh with one triangle primitive (a `POINTS`
 //! primitive when the mesh has no faces): `POSITION`,
-//! `NORMAL`, `TEXCOORD_0`, `COLOR_0` and `_NAME` scalars as `f32`, `u32`
-//! indices. glTF stores one texture coordinate per vertex, so vertices with
+//! `NORMAL`, `TEXCOORD_0`, `COLOR_0`, and per-vertex scalars and vectors as
+//! `_NAME` `f32` `SCALAR`/`VEC3` accessors, `u32` indices. Labels are
+//! `_NAME` `SCALAR` accessors of unsigned shorts when every value is in
+//! `0..=65535`, else signed shorts when in `-32768..=32767` (padded to a
+//! 4-byte stride, as the specification wants of vertex attributes), else
+//! `f32` (exact up to 2^24; such a label reads back as a scalar): glTF
+//! allows 32-bit integers for indices only. Per-face attributes have no
+//! place in glTF ([`crate::WriteReport::dropped`] names them). glTF stores one texture coordinate per vertex, so vertices with
 //! several corner UVs are split. JSON parsing and validation use the `gltf`
 //! crate; binary containers and accessors are decoded here with every offset
 //! checked.
@@ -31,6 +41,7 @@ use std::path::Path;
 use ::gltf::json::{self, accessor::ComponentType, mesh::Semantic, validation::Checked};
 use glam::{DMat3, DMat4, DQuat, DVec2, DVec3, Vec3};
 
+use crate::attribute::{AttributeElement, AttributeValues, LabelStorage};
 use crate::data::{tri_mesh, MeshData, MeshView, ReadReport};
 use crate::error::{excerpt, IoError, Location, Result};
 use crate::format::Format;
@@ -471,7 +482,7 @@ struct Parts {
     normals: Option<Vec<DVec3>>,
     uvs: Option<Vec<DVec2>>,
     colors: Option<Vec<[f32; 4]>>,
-    scalars: Vec<(String, Vec<f64>)>,
+    named: Vec<(String, Named)>,
     primitives: usize,
     /// Read `POINTS` primitives as vertices without faces (when the scene
     /// has no triangle primitive: a point set, as [`write_glb`] writes a mesh
@@ -564,24 +575,37 @@ impl Parts {
         });
         merge(&mut self.colors, colors, first, nv);
         if first {
-            let names = p.attributes.keys().filter_map(|k| match k {
-                Checked::Valid(Semantic::Extras(name)) => Some((name.clone(), Vec::new())),
-                _ => None,
-            });
-            self.scalars = names.collect();
+            self.named = self.first_named(p, get)?;
         }
-        let mut scalars = Vec::with_capacity(self.scalars.len());
-        for (name, mut values) in std::mem::take(&mut self.scalars) {
-            match get(&Semantic::Extras(name.clone()), &[1])? {
-                Some(e) if e.count == nv => {
-                    values.extend(e.rows::<1>().map(|[x]| x));
-                    scalars.push((name, values));
-                }
-                _ => self.report.note(format!("scalar `{name}` dropped: not every primitive has it")),
+        let mut named = Vec::with_capacity(self.named.len());
+        for (name, mut values) in std::mem::take(&mut self.named) {
+            let part = get(&Semantic::Extras(name.clone()), ANY_SHAPE)?.filter(|e| e.count == nv);
+            if part.and_then(|e| Named::read(&e)).is_some_and(|part| values.append(part)) {
+                named.push((name, values));
+            } else {
+                self.report.note(format!("attribute `_{name}` dropped: not every primitive has it, of the same kind"));
             }
         }
-        self.scalars = scalars;
+        self.named = named;
         Ok(())
+    }
+
+    /// The application-specific attributes of the first primitive, empty;
+    /// those of a shape other than `SCALAR` or `VEC3` are skipped with a note.
+    fn first_named(
+        &mut self,
+        p: &json::mesh::Primitive,
+        get: &AttributeReader<'_, '_>,
+    ) -> Result<Vec<(String, Named)>> {
+        let mut named = Vec::new();
+        for key in p.attributes.keys() {
+            let Checked::Valid(semantic @ Semantic::Extras(name)) = key else { continue };
+            match get(semantic, ANY_SHAPE)?.and_then(|e| Named::read(&e)) {
+                Some(values) => named.push((name.clone(), values.emptied())),
+                None => self.report.note(format!("attribute `_{name}` skipped: neither SCALAR nor VEC3")),
+            }
+        }
+        Ok(named)
     }
 
     fn finish(self) -> Result<MeshData> {
@@ -589,9 +613,61 @@ impl Parts {
         data.normals = self.normals;
         data.uvs = self.uvs;
         data.colors = self.colors;
-        data.scalars = self.scalars;
+        for (name, values) in self.named {
+            match values {
+                Named::Scalar(v) => data.scalars.push((name, v)),
+                Named::Vector(v) => data.vectors.push((name, v)),
+                Named::Label(v) => data.labels.push((name, v)),
+            }
+        }
         data.report = self.report;
         Ok(data)
+    }
+}
+
+/// Every accessor shape (`SCALAR` to `MAT4`), for attributes whose shape decides their kind.
+const ANY_SHAPE: &[usize] = &[1, 2, 3, 4, 9, 16];
+
+/// The values of an application-specific attribute as read.
+enum Named {
+    Scalar(Vec<f64>),
+    Vector(Vec<DVec3>),
+    Label(Vec<i64>),
+}
+
+impl Named {
+    /// A `SCALAR` of floats or normalized integers as a scalar, of integers
+    /// as a label (decoded exactly), a `VEC3` as a vector; `None` for other
+    /// shapes. O(count).
+    fn read(e: &Elements<'_>) -> Option<Self> {
+        Some(match e.dims {
+            1 if e.component == ComponentType::F32 || e.normalized => {
+                Self::Scalar(e.rows::<1>().map(|[x]| x).collect())
+            }
+            1 => Self::Label(e.rows::<1>().map(|[x]| x as i64).collect()),
+            3 => Self::Vector(e.rows::<3>().map(DVec3::from_array).collect()),
+            _ => return None,
+        })
+    }
+
+    /// The same kind, without values.
+    fn emptied(self) -> Self {
+        match self {
+            Self::Scalar(_) => Self::Scalar(Vec::new()),
+            Self::Vector(_) => Self::Vector(Vec::new()),
+            Self::Label(_) => Self::Label(Vec::new()),
+        }
+    }
+
+    /// Appends `part` when it is of the same kind (`false` otherwise).
+    fn append(&mut self, part: Self) -> bool {
+        match (self, part) {
+            (Self::Scalar(all), Self::Scalar(p)) => all.extend(p),
+            (Self::Vector(all), Self::Vector(p)) => all.extend(p),
+            (Self::Label(all), Self::Label(p)) => all.extend(p),
+            _ => return false,
+        }
+        true
     }
 }
 
@@ -695,7 +771,7 @@ fn document(view: &MeshView<'_>, embed: bool) -> Result<(json::Root, Vec<u8>)> {
             .iter()
             .map(|&(on, n)| usize::from(on) * n)
             .sum::<usize>()
-            + view.scalars.len();
+            + view.attributes.iter().map(|a| a.arity()).sum::<usize>();
     doc.bin.reserve(4 * (split.source.len() * floats_per_vertex + split.faces.len() * 3));
     let mut attributes = BTreeMap::new();
     if !split.source.is_empty() {
@@ -715,9 +791,13 @@ fn document(view: &MeshView<'_>, embed: bool) -> Result<(json::Root, Vec<u8>)> {
     if let Some(c) = view.colors {
         attributes.insert(Semantic::Colors(0), doc.floats(split.each(c).flatten().copied(), 4, None));
     }
-    for (name, values) in &view.scalars {
-        let v = split.each(values).map(|&x| x as f32);
-        attributes.insert(Semantic::Extras((*name).to_owned()), doc.floats(v, 1, None));
+    for a in view.attributes.iter().filter(|a| a.element == AttributeElement::Vertex) {
+        let accessor = match a.values {
+            AttributeValues::Scalar(v) => doc.floats(split.each(v).map(|&x| x as f32), 1, None),
+            AttributeValues::Vector(v) => doc.floats(split.each(v).flat_map(|d| d.as_vec3().to_array()), 3, None),
+            AttributeValues::Label(v) => doc.labels(split.each(v).copied(), LabelStorage::of(v)),
+        };
+        attributes.insert(Semantic::Extras(a.name.to_owned()), accessor);
     }
     let has_faces = !split.faces.is_empty();
     let indices = has_faces.then(|| {
@@ -746,7 +826,25 @@ impl Doc {
         self.accessor(values.map(f32::to_le_bytes), n, ComponentType::F32, json::buffer::Target::ArrayBuffer, bounds)
     }
 
-    /// Adds a buffer view holding 4-byte words, `n` per element, and an accessor over it.
+    /// Adds integer labels as `storage` says: shorts padded to 4 bytes (a
+    /// vertex attribute's elements must start at multiples of 4), or `f32`.
+    fn labels(&mut self, values: impl Iterator<Item = i64>, storage: LabelStorage) -> json::Index<json::Accessor> {
+        let target = json::buffer::Target::ArrayBuffer;
+        let short = |b: [u8; 2]| [b[0], b[1], 0, 0];
+        match storage {
+            LabelStorage::U16 => {
+                self.accessor(values.map(|x| short((x as u16).to_le_bytes())), 1, ComponentType::U16, target, None)
+            }
+            LabelStorage::I16 => {
+                self.accessor(values.map(|x| short((x as i16).to_le_bytes())), 1, ComponentType::I16, target, None)
+            }
+            LabelStorage::F32 => self.floats(values.map(|x| x as f32), 1, None),
+        }
+    }
+
+    /// Adds a buffer view holding 4-byte words, `n` per element, and an
+    /// accessor over it (with a 4-byte stride when a word holds a
+    /// narrower component).
     fn accessor(
         &mut self,
         words: impl Iterator<Item = [u8; 4]>,
@@ -764,7 +862,7 @@ impl Doc {
             buffer: json::Index::new(0),
             byte_length: length.into(),
             byte_offset: Some(offset.into()),
-            byte_stride: None,
+            byte_stride: (component.size() < 4).then_some(json::buffer::Stride(4)),
             target: Some(Checked::Valid(target)),
             extensions: None,
             extras: Default::default(),

@@ -1,6 +1,7 @@
 //! Reading and writing triangle meshes: OBJ, OFF, PLY (ascii and binary),
 //! STL (ascii and binary) and glTF 2.0 (`.gltf`, `.glb`), with the normals,
-//! texture coordinates, colours and named per-vertex scalars each format can
+//! texture coordinates, colours and named attributes (per-vertex or per-face
+//! scalars, 3-vectors and integer labels, [`attribute`]) each format can
 //! carry, into the [`mesh_kernel::TriMesh`] of the mesh workspace.
 //!
 //! - [`read`] / [`write()`]: by file name (format from the extension, content
@@ -8,7 +9,8 @@
 //!   memory and streams. Writers return a [`WriteReport`] of how much values
 //!   stored as 32-bit floats were rounded, and refuse values `f32` cannot
 //!   hold ([`IoError::Precision`]) unless
-//!   [`WriteOptions::allow_precision_loss`] is set ([`precision`]).
+//!   [`WriteOptions::allow_precision_loss`] is set ([`precision`]); what a
+//!   format cannot store at all is named in [`WriteReport::dropped`].
 //! - [`MeshData`]: the mesh and its attributes as read, with a [`ReadReport`]
 //!   of what the reader changed (polygons triangulated, faces dropped,
 //!   vertices welded); [`MeshView`]: what the writers take.
@@ -33,19 +35,32 @@
 //! let dir = tempfile::tempdir()?;
 //! let path = dir.path().join("tetra.ply");
 //!
-//! // Binary PLY, positions as double, with a named per-vertex property.
-//! let view = MeshView::new(&mesh).with_scalar("mean", &curvature);
-//! mesh_io::write(&path, view, &WriteOptions::default())?;
+//! let direction = vec![DVec3::X; 4];
+//! let chart = vec![0, 0, 1, 1];
+//! // Binary PLY, positions as double, with a named per-vertex property,
+//! // a vector (`d1x d1y d1z`) and a per-face integer label.
+//! let view = MeshView::new(&mesh)
+//!     .with_scalar("mean", &curvature)
+//!     .with_vector("d1", &direction)
+//!     .with_face_label("chart", &chart);
+//! mesh_io::write(&path, view.clone(), &WriteOptions::default())?;
 //!
 //! let data = mesh_io::read(&path)?;
 //! assert_eq!(data.mesh, mesh);
 //! assert_eq!(data.scalar("mean"), Some(&curvature[..]));
+//! assert_eq!(data.vector("d1"), Some(&direction[..]));
+//! assert_eq!(data.face_label("chart"), Some(&chart[..]));
 //! assert!(data.report.is_clean());
+//!
+//! // OBJ has no named attributes: the report says what was left out.
+//! let report = mesh_io::write(dir.path().join("tetra.obj"), view, &WriteOptions::default())?;
+//! assert_eq!(report.dropped.len(), 3);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 #![deny(missing_docs)]
 
 pub mod atomic;
+pub mod attribute;
 pub mod data;
 pub mod error;
 pub mod file;
@@ -57,9 +72,11 @@ pub mod off;
 pub mod ply;
 pub mod precision;
 pub mod stl;
+mod support;
 mod text;
 
 pub use atomic::write_atomic;
+pub use attribute::{Attribute, AttributeElement, AttributeKind, AttributeValues};
 pub use data::{MeshData, MeshView, ReadReport};
 pub use error::{IoError, Location, Result};
 pub use file::{read, read_from, read_with, write, write_polylines, write_to, ReadOptions, WriteOptions};

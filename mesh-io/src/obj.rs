@@ -169,7 +169,7 @@ impl Reader {
             }));
         }
         let mesh = tri_mesh(self.positions, self.faces, Location::new(Format::Obj))?;
-        Ok(MeshData { mesh, normals, uvs, corner_uvs, colors, scalars: Vec::new(), report: self.report })
+        Ok(MeshData { normals, uvs, corner_uvs, colors, report: self.report, ..MeshData::new(mesh) })
     }
 }
 

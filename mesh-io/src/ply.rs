@@ -4,21 +4,30 @@
 //! normals (`nx ny nz`), texture coordinates (`u v`, `s t`, `texture_u
 //! texture_v`), colours (`red green blue [alpha]`; integer types are divided
 //! by 255, `ushort` by 65535) and, for every other scalar property, a named
-//! per-vertex field in [`MeshData::scalars`]. The `face` element gives
-//! polygons (`vertex_indices` or `vertex_index`, a list of any integer count
-//! and index type), fan-triangulated, and per-corner texture coordinates from
-//! a `texcoord` float list. Other elements and properties are skipped.
-//! Header counts are checked against the data size before anything is allocated.
+//! attribute ([`crate::attribute`]): a float triple named `NAMEx NAMEy NAMEz`
+//! (or `NAME_x NAME_y NAME_z`) is a vector `NAME`, another float property a
+//! scalar, an integer property (`char` to `uint`) a label. The `face`
+//! element gives polygons (`vertex_indices` or `vertex_index`, a list of any
+//! integer count and index type), fan-triangulated, per-corner texture
+//! coordinates from a `texcoord` float list, and per-face attributes from its
+//! scalar properties in the same way (each triangle of a polygon gets the
+//! polygon's value). Other elements and list properties are skipped with a
+//! note. Header counts are checked against the data size before anything is
+//! allocated.
 //!
 //! Writing: positions, normals and texture coordinates as `double` (or
-//! `float`, [`PlyOptions::double`]), colours as `uchar`, scalars as `double`,
-//! faces as `list uchar int vertex_indices` (plus `list uchar double
-//! texcoord` for corner UVs).
+//! `float`, [`PlyOptions::double`]), colours as `uchar`, scalars and vectors
+//! as `double` (vectors as `NAMEx NAMEy NAMEz`), labels as `int` (`uint`
+//! when a value needs it), faces as `list uchar int vertex_indices` (plus
+//! `list uchar double texcoord` for corner UVs) followed by the per-face
+//! attributes.
 
+use std::collections::{HashMap, HashSet};
 use std::io::Write;
 
 use glam::{DVec2, DVec3};
 
+use crate::attribute::{AttributeElement, AttributeValues};
 use crate::data::{tri_mesh, MeshData, MeshView, ReadReport};
 use crate::error::{excerpt, IoError, Location, Result};
 use crate::format::Format;
@@ -594,7 +603,8 @@ fn read_body(h: &Header, mut src: impl Source) -> Result<MeshData> {
     data.normals = v.normals;
     data.uvs = v.uvs;
     data.colors = v.colors;
-    data.scalars = v.scalars;
+    (data.scalars, data.vectors, data.labels) = (v.fields.scalars, v.fields.vectors, v.fields.labels);
+    (data.face_scalars, data.face_vectors, data.face_labels) = (f.fields.scalars, f.fields.vectors, f.fields.labels);
     data.corner_uvs = f.corner_uvs;
     data.report = report;
     Ok(data)
@@ -611,7 +621,96 @@ struct Vertices {
     normals: Option<Vec<DVec3>>,
     uvs: Option<Vec<DVec2>>,
     colors: Option<Vec<[f32; 4]>>,
+    fields: Fields,
+}
+
+/// The named attributes among an element's scalar properties that no
+/// standard attribute claims: float triples `NAMEx NAMEy NAMEz` (or
+/// `NAME_x ...`) as vectors, other floats as scalars, integers as labels.
+#[derive(Default)]
+struct FieldSlots {
+    scalars: Vec<(String, usize)>,
+    vectors: Vec<(String, [usize; 3])>,
+    labels: Vec<(String, usize)>,
+}
+
+impl FieldSlots {
+    /// Slots of the properties of `e` not in `claimed`. O(properties).
+    fn new(e: &Element, claimed: &[usize]) -> Self {
+        let mut taken = vec![false; e.props.len()];
+        for &i in claimed {
+            if let Some(t) = taken.get_mut(i) {
+                *t = true;
+            }
+        }
+        let float = |i: usize| matches!(e.props[i].kind, Kind::Scalar(t) if t.is_float());
+        let by_name: HashMap<&str, usize> = e.props.iter().enumerate().map(|(i, p)| (p.name.as_str(), i)).collect();
+        let mut out = Self::default();
+        let mut vector_names = HashSet::new();
+        for x in 0..e.props.len() {
+            let Some(prefix) = e.props[x].name.strip_suffix('x').filter(|p| !p.is_empty()) else { continue };
+            let other = |axis: &str| by_name.get(format!("{prefix}{axis}").as_str()).copied();
+            let (Some(y), Some(z)) = (other("y"), other("z")) else { continue };
+            let name = prefix.strip_suffix('_').filter(|n| !n.is_empty()).unwrap_or(prefix);
+            let free = [x, y, z].iter().all(|&i| !taken[i] && float(i));
+            if free && !by_name.contains_key(name) && vector_names.insert(name.to_owned()) {
+                [x, y, z].iter().for_each(|&i| taken[i] = true);
+                out.vectors.push((name.to_owned(), [x, y, z]));
+            }
+        }
+        for (i, p) in e.props.iter().enumerate().filter(|&(i, _)| !taken[i]) {
+            match p.kind {
+                Kind::Scalar(t) if t.is_float() => out.scalars.push((p.name.clone(), i)),
+                Kind::Scalar(_) => out.labels.push((p.name.clone(), i)),
+                Kind::List(..) => {}
+            }
+        }
+        out
+    }
+}
+
+/// Values of the named attributes of one element, as read.
+#[derive(Default)]
+struct Fields {
     scalars: Vec<(String, Vec<f64>)>,
+    vectors: Vec<(String, Vec<DVec3>)>,
+    labels: Vec<(String, Vec<i64>)>,
+}
+
+impl Fields {
+    /// Empty lists for `slots`, with room for `n` values each (`n` bounded
+    /// by the data size, see `check_counts`).
+    fn new(slots: &FieldSlots, n: usize) -> Self {
+        fn lists<T, S>(named: &[(String, S)], n: usize) -> Vec<(String, Vec<T>)> {
+            named.iter().map(|(name, _)| (name.clone(), Vec::with_capacity(n))).collect()
+        }
+        Self { scalars: lists(&slots.scalars, n), vectors: lists(&slots.vectors, n), labels: lists(&slots.labels, n) }
+    }
+
+    /// Appends one instance's values (`row[k]` for property `k`) `times`
+    /// times (once per triangle of a polygon).
+    ///
+    /// # Errors
+    /// `IoError::Syntax` when a label's value is not an integer (an ascii
+    /// `2.5`, `nan` or `1e300` in an integer property).
+    #[inline]
+    fn push(&mut self, slots: &FieldSlots, row: &[f64], times: usize) -> Result<()> {
+        for ((_, list), (_, k)) in self.scalars.iter_mut().zip(&slots.scalars) {
+            list.extend(std::iter::repeat_n(row[*k], times));
+        }
+        for ((_, list), (_, k)) in self.vectors.iter_mut().zip(&slots.vectors) {
+            list.extend(std::iter::repeat_n(DVec3::new(row[k[0]], row[k[1]], row[k[2]]), times));
+        }
+        for ((name, list), (_, k)) in self.labels.iter_mut().zip(&slots.labels) {
+            let x = row[*k];
+            if x.fract() != 0.0 || x.abs() >= 9.2e18 {
+                let expected = format!("an integer value of property `{name}`");
+                return Err(IoError::syntax(loc(), expected, x.to_string().as_bytes()));
+            }
+            list.extend(std::iter::repeat_n(x as i64, times));
+        }
+        Ok(())
+    }
 }
 
 /// Which property of the `vertex` element feeds which attribute.
@@ -622,7 +721,7 @@ struct VertexSlots {
     /// Red, green, blue, alpha (alpha may point at the constant 1 slot).
     color: Option<Vec<usize>>,
     color_scale: Vec<f64>,
-    scalars: Vec<usize>,
+    fields: FieldSlots,
 }
 
 impl VertexSlots {
@@ -641,11 +740,11 @@ impl VertexSlots {
         let (normal, uv) = (all(&NORMALS), all(&UVS));
         let mut known = xyz.clone();
         known.extend(normal.iter().chain(&uv).chain(&color).flatten());
-        let scalars = (0..one).filter(|i| !known.contains(i) && matches!(e.props[*i].kind, Kind::Scalar(_))).collect();
+        let fields = FieldSlots::new(e, &known);
         let mut color_scale: Vec<f64> =
             e.props.iter().map(|p| if let Kind::Scalar(t) = p.kind { t.color_scale() } else { 1.0 }).collect();
         color_scale.push(1.0);
-        Ok(Self { xyz, normal, uv, color, color_scale, scalars })
+        Ok(Self { xyz, normal, uv, color, color_scale, fields })
     }
 }
 
@@ -661,7 +760,7 @@ impl Vertices {
             normals: with(slots.normal.is_some(), n),
             uvs: with(slots.uv.is_some(), n),
             colors: with(slots.color.is_some(), n),
-            scalars: slots.scalars.iter().map(|&i| (e.props[i].name.clone(), Vec::with_capacity(n))).collect(),
+            fields: Fields::new(&slots.fields, n),
         };
         let mut row = vec![1.0; e.props.len() + 1];
         src.rows(e, &mut row[..e.props.len()], |row| out.push(&slots, row))?;
@@ -685,10 +784,7 @@ impl Vertices {
         if let (Some(k), Some(list)) = (&s.color, &mut self.colors) {
             list.push([0, 1, 2, 3].map(|c| (value(k[c]) * s.color_scale[k[c]]) as f32));
         }
-        for ((_, list), &k) in self.scalars.iter_mut().zip(&s.scalars) {
-            list.push(value(k));
-        }
-        Ok(())
+        self.fields.push(&s.fields, row, 1)
     }
 }
 
@@ -696,6 +792,7 @@ impl Vertices {
 struct Faces {
     faces: Vec<[u32; 3]>,
     corner_uvs: Option<Vec<[DVec2; 3]>>,
+    fields: Fields,
 }
 
 impl Faces {
@@ -705,22 +802,36 @@ impl Faces {
             return Err(IoError::syntax(loc(), "a `vertex_indices` list in element `face`", b""));
         };
         let texcoord = list(&["texcoord"]);
+        let slots = FieldSlots::new(e, &[indices]);
         // `check_counts` bounds e.count by the data size.
-        let mut out = Faces { faces: Vec::with_capacity(e.count), corner_uvs: texcoord.map(|_| Vec::new()) };
+        let mut out = Faces {
+            faces: Vec::with_capacity(e.count),
+            corner_uvs: texcoord.map(|_| Vec::new()),
+            fields: Fields::new(&slots, e.count),
+        };
         if src.index_lists(e, nv, &mut out, report)? {
             return Ok(out);
         }
+        for (k, p) in e.props.iter().enumerate() {
+            if matches!(p.kind, Kind::List(..)) && k != indices && Some(k) != texcoord {
+                report.note(format!("face list property `{}` ignored", p.name));
+            }
+        }
         let (mut polygon, mut uv, mut skipped) = (Vec::new(), Vec::new(), Vec::new());
+        let mut row = vec![0.0; e.props.len()];
         for f in 0..e.count {
             for (k, p) in e.props.iter().enumerate() {
                 match p.kind {
                     Kind::List(c, t) if k == indices => src.indices(c, t, f, nv, &mut polygon)?,
                     Kind::List(c, t) if Some(k) == texcoord => src.list(c, t, &mut uv)?,
                     Kind::List(c, t) => src.list(c, t, &mut skipped)?,
-                    Kind::Scalar(t) => drop(src.scalar(t)?),
+                    Kind::Scalar(t) => row[k] = src.scalar(t)?,
                 }
             }
+            let before = out.faces.len();
             out.push(&polygon, &uv, report);
+            let triangles = out.faces.len() - before;
+            out.fields.push(&slots, &row, triangles).map_err(|e| e.or_line(src.at().line))?;
         }
         Ok(out)
     }
@@ -730,7 +841,7 @@ impl Faces {
         if self.corner_uvs.is_some() && uv.len() != 2 * polygon.len() && self.corner_uvs.take().is_some() {
             report.note("texture coordinates dropped: a face's `texcoord` list does not match its vertices");
         }
-        let Faces { faces, corner_uvs } = self;
+        let Faces { faces, corner_uvs, .. } = self;
         report.triangulate(polygon, |corners, tri| {
             faces.push(tri);
             if let Some(list) = corner_uvs {
@@ -742,13 +853,17 @@ impl Faces {
 
 /// Writes a PLY file. Cost O(size).
 ///
-/// Scalar names must be single words of printable ascii that do not collide
-/// with the properties this crate writes (`x`, `nx`, `red`, ...), else
-/// [`IoError::Unsupported`].
+/// Attribute names must be single words of printable ascii, and the
+/// properties they make (`NAME`, or `NAMEx NAMEy NAMEz` for a vector) must
+/// not collide with each other or with the properties this crate reads as
+/// standard attributes (`x`, `nx`, `red`, `texture_u`, ... on vertices,
+/// `vertex_indices`, `texcoord` on faces), else [`IoError::Unsupported`].
+/// Labels are written as `int`, or `uint` when a value needs it.
 ///
 /// # Errors
-/// `IoError::AttributeLength` from `MeshView::check`; `IoError::Unsupported` for a scalar name that is not a
-/// single printable word or clashes with a standard property; `IoError::Io` when `out` fails. Float
+/// `IoError::AttributeLength` and `IoError::AttributeName` from `MeshView::check`; `IoError::Unsupported` for
+/// an attribute name that is not a single printable word or makes a property name used twice or by a standard
+/// attribute, or a label with values beyond both `int` and `uint`; `IoError::Io` when `out` fails. Float
 /// properties are narrowed without the check of [`crate::write_to`].
 pub fn write<W: Write>(out: W, view: &MeshView<'_>, options: &PlyOptions) -> Result<()> {
     view.check()?;
@@ -770,11 +885,44 @@ pub fn write<W: Write>(out: W, view: &MeshView<'_>, options: &PlyOptions) -> Res
 struct Layout {
     real: Scalar,
     index: Scalar,
+    /// Named properties of the `vertex` element, standard ones first.
     vertex: Vec<(String, Scalar)>,
+    /// Named scalar properties of the `face` element, after its lists.
+    face: Vec<(String, Scalar)>,
+    /// The type of each of the view's attributes, in order.
+    types: Vec<Scalar>,
 }
 
-const RESERVED: [&str; 16] =
-    ["x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t", "texture_u", "texture_v", "red", "green", "blue", "alpha"];
+/// Vertex property names the reader takes as standard attributes.
+const RESERVED: [&str; 24] = [
+    "x",
+    "y",
+    "z",
+    "nx",
+    "ny",
+    "nz",
+    "normal_x",
+    "normal_y",
+    "normal_z",
+    "u",
+    "v",
+    "s",
+    "t",
+    "texture_u",
+    "texture_v",
+    "texture_s",
+    "texture_t",
+    "red",
+    "green",
+    "blue",
+    "alpha",
+    "diffuse_red",
+    "diffuse_green",
+    "diffuse_blue",
+];
+
+/// Face property names the reader takes as standard attributes.
+const RESERVED_FACE: [&str; 3] = ["vertex_indices", "vertex_index", "texcoord"];
 
 impl Layout {
     fn new(view: &MeshView<'_>, options: &PlyOptions) -> Result<Self> {
@@ -789,15 +937,30 @@ impl Layout {
         add(view.normals.is_some(), &["nx", "ny", "nz"], real);
         add(view.uvs.is_some() && view.corner_uvs.is_none(), options.uv_names.names(), real);
         add(view.colors.is_some(), &["red", "green", "blue", "alpha"], Scalar::U8);
-        for (name, _) in &view.scalars {
-            let valid = !name.is_empty() && name.bytes().all(|b| b.is_ascii_graphic());
-            if !valid || RESERVED.contains(name) {
-                let what = format!("scalar name `{name}` as a PLY property (a word, not a standard property name)");
-                return Err(IoError::unsupported(loc(), what));
+        let standard = vertex.len();
+        let (mut face, mut types) = (Vec::new(), Vec::with_capacity(view.attributes.len()));
+        for a in &view.attributes {
+            let valid = !a.name.is_empty() && a.name.bytes().all(|b| b.is_ascii_graphic());
+            if !valid {
+                return Err(IoError::unsupported(loc(), format!("{a} as a PLY property (the name is not a word)")));
             }
-            vertex.push((name.to_string(), Scalar::F64));
+            let t = match a.values {
+                AttributeValues::Scalar(_) | AttributeValues::Vector(_) => Scalar::F64,
+                AttributeValues::Label(v) => label_type(v).ok_or_else(|| {
+                    IoError::unsupported(loc(), format!("{a}: values beyond the 32-bit integers PLY stores"))
+                })?,
+            };
+            types.push(t);
+            let names: Vec<String> = match a.values {
+                AttributeValues::Vector(_) => ["x", "y", "z"].iter().map(|axis| format!("{}{axis}", a.name)).collect(),
+                _ => vec![a.name.to_owned()],
+            };
+            let list = if a.element == AttributeElement::Vertex { &mut vertex } else { &mut face };
+            list.extend(names.into_iter().map(|n| (n, t)));
         }
-        Ok(Self { real, index, vertex })
+        check_names(&vertex[standard..], &RESERVED, "vertex")?;
+        check_names(&face, &RESERVED_FACE, "face")?;
+        Ok(Self { real, index, vertex, face, types })
     }
 
     fn header<W: Write>(&self, view: &MeshView<'_>, encoding: PlyEncoding, w: &mut TextWriter<W>) -> Result<()> {
@@ -813,6 +976,9 @@ impl Layout {
         w.str("property list uchar ").str(self.index.name()).str(" vertex_indices").line()?;
         if view.corner_uvs.is_some() {
             w.str("property list uchar ").str(self.real.name()).str(" texcoord").line()?;
+        }
+        for (name, t) in &self.face {
+            w.str("property ").str(t.name()).str(" ").str(name).line()?;
         }
         w.str("end_header").line()
     }
@@ -832,9 +998,7 @@ impl Layout {
             if let Some(c) = view.colors {
                 sink.values(Scalar::U8, &c[i].map(|x| f64::from(crate::off::color_byte(x))));
             }
-            for (_, values) in &view.scalars {
-                sink.values(Scalar::F64, &[values[i]]);
-            }
+            self.attributes(view, AttributeElement::Vertex, i, &mut sink);
             sink.end()?;
         }
         for (f, tri) in mesh.faces().iter().enumerate() {
@@ -844,10 +1008,52 @@ impl Layout {
                 sink.values(Scalar::U8, &[6.0]);
                 sink.values(self.real, &corner[f].map(|uv| uv.to_array()).concat());
             }
+            self.attributes(view, AttributeElement::Face, f, &mut sink);
             sink.end()?;
         }
         sink.finish()
     }
+
+    /// The values of element `i` of every attribute of `element`.
+    #[inline]
+    fn attributes(&self, view: &MeshView<'_>, element: AttributeElement, i: usize, sink: &mut impl Sink) {
+        for (a, &t) in view.attributes.iter().zip(&self.types).filter(|(a, _)| a.element == element) {
+            match a.values {
+                AttributeValues::Scalar(v) => sink.values(t, &[v[i]]),
+                AttributeValues::Vector(v) => sink.values(t, &v[i].to_array()),
+                // Exact: `label_type` keeps values within 32 bits.
+                AttributeValues::Label(v) => sink.values(t, &[v[i] as f64]),
+            }
+        }
+    }
+}
+
+/// `int` when every value fits, else `uint` when every value fits, else `None`. O(n).
+fn label_type(values: &[i64]) -> Option<Scalar> {
+    let (lo, hi) = values.iter().fold((0, 0), |(lo, hi), &x| (x.min(lo), x.max(hi)));
+    if lo >= i64::from(i32::MIN) && hi <= i64::from(i32::MAX) {
+        Some(Scalar::I32)
+    } else if lo >= 0 && hi <= i64::from(u32::MAX) {
+        Some(Scalar::U32)
+    } else {
+        None
+    }
+}
+
+/// Refuses named properties of `element` that repeat each other or a
+/// standard property. O(n).
+fn check_names(named: &[(String, Scalar)], reserved: &[&str], element: &str) -> Result<()> {
+    let mut seen = HashSet::with_capacity(named.len());
+    for (name, _) in named {
+        if reserved.contains(&name.as_str()) || !seen.insert(name.as_str()) {
+            let what = format!(
+                "a property `{name}` in element `{element}` from a named attribute (a standard property, or \
+                 one made twice: a vector `NAME` makes `NAMEx NAMEy NAMEz`)"
+            );
+            return Err(IoError::unsupported(loc(), what));
+        }
+    }
+    Ok(())
 }
 
 /// Where the writer puts values: ascii words or binary bytes.
@@ -876,7 +1082,8 @@ impl<W: Write> Sink for AsciiSink<W> {
             match t {
                 Scalar::F64 => self.w.float(x),
                 Scalar::F32 => self.w.float32(x as f32),
-                _ => self.w.uint(x as u64),
+                Scalar::I8 | Scalar::I16 | Scalar::I32 => self.w.int(x as i64),
+                Scalar::U8 | Scalar::U16 | Scalar::U32 => self.w.uint(x as u64),
             };
         }
     }

@@ -2,8 +2,8 @@
 //! refuses values `f32` cannot hold, and the [`WriteReport`] of the rounding.
 //!
 //! STL (binary), glTF/GLB and PLY with `float` properties store positions
-//! (and normals, texture coordinates, glTF scalars) as IEEE 754 single
-//! precision. A value is *lost* when it is finite in `f64` but becomes
+//! (and normals, texture coordinates, glTF scalars and vectors, glTF labels
+//! beyond 16 bits) as IEEE 754 single precision. A value is *lost* when it is finite in `f64` but becomes
 //! infinite in `f32` (|x| > 3.4e38), or when it is non-zero and becomes zero
 //! or subnormal with a relative change above [`PRECISION_WARNING`] (the whole
 //! mesh is tiny, e.g. at a scale of 1e-300). Rounding is measured relative to
@@ -14,6 +14,7 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::attribute::{AttributeElement, AttributeValues, LabelStorage, F32_EXACT_INTEGER};
 use crate::data::MeshView;
 use crate::error::{IoError, Location, Result};
 use crate::format::Format;
@@ -30,27 +31,36 @@ pub struct WriteReport {
     /// Largest relative change of a value stored as `f32`, `|f32(x) - x| /
     /// scale` (see the module documentation); `0` when nothing is narrowed.
     pub max_relative_rounding: f64,
-    /// Values lost (infinite or flushed to zero in `f32`), written anyway
-    /// because [`crate::WriteOptions::allow_precision_loss`] was set.
+    /// Values lost (infinite or flushed to zero in `f32`, labels beyond
+    /// 2^24 rounded), written anyway because
+    /// [`crate::WriteOptions::allow_precision_loss`] was set.
     pub values_lost: usize,
+    /// What the view held that the format cannot store, left out of the
+    /// file, one short phrase each (`face scalar `distortion``, `normals`).
+    pub dropped: Vec<String>,
 }
 
 impl WriteReport {
-    /// `true` when every value was stored within [`PRECISION_WARNING`] and none lost.
+    /// `true` when every value was stored within [`PRECISION_WARNING`], none
+    /// lost and nothing dropped.
     pub fn is_clean(&self) -> bool {
-        self.values_lost == 0 && self.max_relative_rounding <= PRECISION_WARNING
+        self.values_lost == 0 && self.max_relative_rounding <= PRECISION_WARNING && self.dropped.is_empty()
     }
 }
 
 impl std::fmt::Display for WriteReport {
     /// One line, e.g. `values rounded to 32-bit floats by up to 3.1e-5 relative`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.is_clean() {
-            return f.write_str("values stored within 1e-6 relative");
+        if self.values_lost == 0 && self.max_relative_rounding <= PRECISION_WARNING {
+            f.write_str("values stored within 1e-6 relative")?;
+        } else {
+            write!(f, "values rounded to 32-bit floats by up to {:.1e} relative", self.max_relative_rounding)?;
         }
-        write!(f, "values rounded to 32-bit floats by up to {:.1e} relative", self.max_relative_rounding)?;
         if self.values_lost > 0 {
             write!(f, "; {} values lost (infinite or zero in 32-bit floats)", self.values_lost)?;
+        }
+        if !self.dropped.is_empty() {
+            write!(f, "; not stored by this format: {}", self.dropped.join(", "))?;
         }
         Ok(())
     }
@@ -62,7 +72,8 @@ pub(crate) struct Narrowed {
     pub positions: bool,
     pub normals: bool,
     pub uvs: bool,
-    pub scalars: bool,
+    /// Per-vertex scalars and vectors, and labels wider than 16 bits.
+    pub attributes: bool,
 }
 
 /// Checks every value the format narrows to `f32`: a lost value is an
@@ -79,9 +90,14 @@ pub(crate) fn check(view: &MeshView<'_>, which: Narrowed, format: Format, allow:
     if let (true, Some(uvs), None) = (which.uvs, view.uvs, view.corner_uvs) {
         c.field("texture coordinate", uvs, DVec2::to_array, Scale::Magnitude)?;
     }
-    if which.scalars {
-        for (name, values) in &view.scalars {
-            c.field(&format!("scalar `{name}`"), values, |&x| [x], Scale::Magnitude)?;
+    if which.attributes {
+        for a in view.attributes.iter().filter(|a| a.element == AttributeElement::Vertex) {
+            match a.values {
+                AttributeValues::Scalar(v) => c.field(&a.to_string(), v, |&x| [x], Scale::Magnitude)?,
+                AttributeValues::Vector(v) => c.field(&a.to_string(), v, DVec3::to_array, Scale::Magnitude)?,
+                AttributeValues::Label(v) if LabelStorage::of(v) == LabelStorage::F32 => c.labels(&a.to_string(), v)?,
+                AttributeValues::Label(_) => {}
+            }
         }
     }
     Ok(c.report)
@@ -110,6 +126,17 @@ impl Checker {
         Ok(())
     }
 
+    /// Labels stored as `f32`: exact up to 2^24 in magnitude, rounded
+    /// (lost) beyond.
+    fn labels(&mut self, what: &str, values: &[i64]) -> Result<()> {
+        for (vertex, &x) in values.iter().enumerate() {
+            if x.abs() > F32_EXACT_INTEGER {
+                self.lose(what, vertex, x as f64, "is an integer beyond 2^24, which a 32-bit float rounds")?;
+            }
+        }
+        Ok(())
+    }
+
     #[inline]
     fn value(&mut self, what: &str, vertex: usize, x: f64, scale: f64) -> Result<()> {
         let narrowed = x as f32;
@@ -127,7 +154,14 @@ impl Checker {
             }
             return Ok(());
         };
-        let Some(problem) = problem else { return Ok(()) };
+        match problem {
+            Some(problem) => self.lose(what, vertex, x, problem),
+            None => Ok(()),
+        }
+    }
+
+    /// A value the format cannot hold: counted when allowed, else refused.
+    fn lose(&mut self, what: &str, vertex: usize, x: f64, problem: &'static str) -> Result<()> {
         if self.allow {
             self.report.values_lost += 1;
             self.report.max_relative_rounding = self.report.max_relative_rounding.max(1.0);
@@ -217,11 +251,32 @@ mod tests {
         let mean = [0.1, 1e39, 0.0];
         let e = check(
             &MeshView::new(&exact).with_scalar("mean", &mean),
-            Narrowed { scalars: true, ..Narrowed::default() },
+            Narrowed { attributes: true, ..Narrowed::default() },
             Format::Glb,
             false,
         )
         .unwrap_err();
         assert!(e.to_string().contains("scalar `mean` of vertex 1"), "{e}");
+    }
+
+    #[test]
+    fn vectors_and_wide_labels_are_checked() {
+        let mesh = triangle(1.0);
+        let attributes = Narrowed { attributes: true, ..Narrowed::default() };
+        let d = [DVec3::X, DVec3::new(0.0, 1e39, 0.0), DVec3::Z];
+        let e = check(&MeshView::new(&mesh).with_vector("d1", &d), attributes, Format::Glb, false).unwrap_err();
+        assert!(e.to_string().contains("vertex vector `d1` of vertex 1"), "{e}");
+        let narrow = [0, 1, 65535];
+        let r = check(&MeshView::new(&mesh).with_label("chart", &narrow), attributes, Format::Glb, false).unwrap();
+        assert!(r.is_clean());
+        let exact = [-1, 1 << 24, 7];
+        assert!(check(&MeshView::new(&mesh).with_label("c", &exact), attributes, Format::Glb, false)
+            .unwrap()
+            .is_clean());
+        let wide = [0, (1 << 24) + 1, 2];
+        let e = check(&MeshView::new(&mesh).with_label("c", &wide), attributes, Format::Glb, false).unwrap_err();
+        assert!(e.to_string().contains("label `c` of vertex 1"), "{e}");
+        let r = check(&MeshView::new(&mesh).with_label("c", &wide), attributes, Format::Glb, true).unwrap();
+        assert_eq!(r.values_lost, 1);
     }
 }

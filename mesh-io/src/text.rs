@@ -301,6 +301,15 @@ impl<W: Write> TextWriter<W> {
         self
     }
 
+    /// Appends a signed integer.
+    #[inline]
+    pub fn int(&mut self, x: i64) -> &mut Self {
+        if x < 0 {
+            self.str("-");
+        }
+        self.uint(x.unsigned_abs())
+    }
+
     /// Ends a line, handing the buffer over when it is full.
     #[inline]
     pub fn line(&mut self) -> Result<()> {

@@ -65,6 +65,11 @@ fn ply_every_encoding_keeps_everything_bit_exact() {
         assert_eq!(back.normals, d.normals);
         assert_eq!(back.uvs, d.uvs);
         assert_eq!(back.scalars, d.scalars);
+        assert_eq!(back.vectors, d.vectors);
+        assert_eq!(back.labels, d.labels);
+        assert_eq!(back.face_scalars, d.face_scalars);
+        assert_eq!(back.face_vectors, d.face_vectors);
+        assert_eq!(back.face_labels, d.face_labels);
         let colors = back.colors.unwrap();
         assert!(colors.iter().zip(d.colors.as_ref().unwrap()).all(|(a, b)| (a[0] - b[0]).abs() < 1e-6));
     }
@@ -120,6 +125,9 @@ fn gltf_and_glb_keep_attributes() {
         assert_eq!(back.uvs, d.uvs);
         assert_eq!(back.colors, d.colors);
         assert_eq!(back.scalars, d.scalars);
+        assert_eq!(back.vectors, d.vectors);
+        assert_eq!(back.labels, d.labels);
+        assert!(back.face_scalars.is_empty() && back.face_labels.is_empty(), "glTF has no per-face attributes");
         let normals = back.normals.unwrap();
         for (a, b) in normals.iter().zip(d.normals.as_ref().unwrap()) {
             assert!((*a - b.normalize()).length() < 1e-6, "normals come back unit length");

@@ -33,6 +33,12 @@ pub fn grid(n: u32) -> MeshData {
         ("gaussian".into(), (0..nv).map(|i| i as f64 * 0.125).collect()),
         ("mean".into(), (0..nv).map(|i| -(i as f64) / 4.0).collect()),
     ];
+    data.vectors = vec![("d1".into(), (0..nv).map(|i| DVec3::new(1.0, i as f64 / 8.0, -0.5)).collect())];
+    data.labels = vec![("segment".into(), (0..nv).map(|i| (i % 5) as i64).collect())];
+    let nf = data.mesh.face_count();
+    data.face_scalars = vec![("distortion".into(), (0..nf).map(|f| 1.0 + f as f64 / 16.0).collect())];
+    data.face_vectors = vec![("gradient".into(), (0..nf).map(|f| DVec3::new(0.5, -(f as f64), 2.0)).collect())];
+    data.face_labels = vec![("chart".into(), (0..nf).map(|f| (f / 3) as i64 - 1).collect())];
     data
 }
 
