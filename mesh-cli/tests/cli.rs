@@ -38,6 +38,41 @@ fn info_on_builtin_shapes() {
 }
 
 #[test]
+fn info_lists_attributes_with_kind_and_arity() {
+    let dir = tempfile::tempdir().unwrap();
+    let curvature = dir.path().join("k.ply");
+    let (ok, _, err) = mesh(&["curvature", "--shape", "icosphere", "--res", "2", "--out", curvature.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let info = json(&["info", "--json", curvature.to_str().unwrap()]);
+    let list = info["attributes"].as_array().unwrap().clone();
+    let find = |name: &str| {
+        let a = list.iter().find(|a| a["name"] == name).unwrap_or_else(|| panic!("{name} not in {list:?}"));
+        (a["element"].as_str().unwrap().to_owned(), a["kind"].as_str().unwrap().to_owned(), a["arity"].as_u64())
+    };
+    assert_eq!(find("d1"), ("vertex".into(), "vector".into(), Some(3)));
+    assert_eq!(find("flag"), ("vertex".into(), "label".into(), Some(1)));
+    assert_eq!(find("mean"), ("vertex".into(), "scalar".into(), Some(1)));
+    assert!(list.iter().all(|a| a["name"] != "d1x"), "vector components are not listed as scalars");
+    let (ok, text, _) = mesh(&["info", curvature.to_str().unwrap()]);
+    assert!(ok && text.contains("attribute          vertex vector d1 (3 per value)"), "{text}");
+    let atlas = dir.path().join("a.ply");
+    let (ok, _, err) = mesh(&["param", "--shape", "torus", "--res", "6", "--out", atlas.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let info = json(&["info", "--json", atlas.to_str().unwrap()]);
+    let kinds: Vec<(String, String)> = info["attributes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| (a["name"].as_str().unwrap().to_owned(), format!("{} {}", a["element"], a["kind"])))
+        .collect();
+    for (name, kind) in
+        [("uvs", r#""corner" "uv""#), ("chart", r#""face" "label""#), ("angle_distortion", r#""face" "scalar""#)]
+    {
+        assert!(kinds.contains(&(name.to_owned(), kind.to_owned())), "{name}: {kinds:?}");
+    }
+}
+
+#[test]
 fn info_matches_the_shared_data_readme() {
     let Some(dir) = shared_data() else { return };
     // file, V, F, chi, genus, boundary loops (from shared/data/README.md).

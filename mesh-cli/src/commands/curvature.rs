@@ -1,8 +1,9 @@
 //! `mesh curvature`: pointwise Gaussian and mean curvature from the
 //! curvature tensor (eq. 2.19-2.20, 2.27-2.31), the discrete values (eq.
 //! 2.25, 2.26) and their integrals, principal curvatures and directions,
-//! written as binary PLY with per-vertex `double` properties, with summary
-//! statistics and the count of flagged vertices.
+//! written as binary PLY with per-vertex `double` properties (directions as
+//! vector triples, flags as `int` labels), with summary statistics and the
+//! count of flagged vertices.
 
 use std::f64::consts::TAU;
 use std::path::PathBuf;
@@ -24,9 +25,10 @@ pub struct Args {
     #[command(flatten)]
     pub(crate) input: InputArgs,
     /// Output PLY file: positions as double and per-vertex double properties
-    /// gaussian mean (from the tensor) k1 k2 d1x d1y d1z d2x d2y d2z
-    /// shape_index curvedness gaussian_discrete mean_discrete
-    /// gaussian_integrated mean_integrated geodesic_integrated valid flag
+    /// gaussian mean (from the tensor) k1 k2, the principal directions as
+    /// vectors d1 d2 (properties d1x d1y d1z d2x d2y d2z), shape_index
+    /// curvedness gaussian_discrete mean_discrete gaussian_integrated
+    /// mean_integrated geodesic_integrated, and int labels valid flag
     /// flag_discrete (flag codes: 0 trusted, 1 isolated, 2 non-manifold,
     /// 3 degenerate, 4 ill-conditioned, 5 zero-area-face, 6 boundary,
     /// 7 unresolved; flagged values are 0).
@@ -226,28 +228,19 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
     let elapsed = start.elapsed().as_secs_f64() * 1e3;
 
     let t = &c.tensor;
-    let split = |v: &[mesh_kernel::glam::DVec3]| -> [Vec<f64>; 3] {
-        [v.iter().map(|d| d.x).collect(), v.iter().map(|d| d.y).collect(), v.iter().map(|d| d.z).collect()]
-    };
-    let [d1x, d1y, d1z] = split(&t.d1);
-    let [d2x, d2y, d2z] = split(&t.d2);
     let shape_index = t.shape_index();
     let curvedness = t.curvedness();
-    let valid: Vec<f64> = t.status.iter().map(|s| if s.is_valid() { 1.0 } else { 0.0 }).collect();
+    let valid: Vec<i64> = t.status.iter().map(|s| i64::from(s.is_valid())).collect();
     let codes =
-        |flags: &[Option<CurvatureFlag>]| -> Vec<f64> { flags.iter().map(|f| f64::from(flag_code(*f))).collect() };
+        |flags: &[Option<CurvatureFlag>]| -> Vec<i64> { flags.iter().map(|f| i64::from(flag_code(*f))).collect() };
     let (flag, flag_discrete) = (codes(&c.flag), codes(&c.flag_discrete));
     let view = MeshView::new(mesh)
         .with_scalar("gaussian", &c.gaussian)
         .with_scalar("mean", &c.mean)
         .with_scalar("k1", &t.k1)
         .with_scalar("k2", &t.k2)
-        .with_scalar("d1x", &d1x)
-        .with_scalar("d1y", &d1y)
-        .with_scalar("d1z", &d1z)
-        .with_scalar("d2x", &d2x)
-        .with_scalar("d2y", &d2y)
-        .with_scalar("d2z", &d2z)
+        .with_vector("d1", &t.d1)
+        .with_vector("d2", &t.d2)
         .with_scalar("shape_index", &shape_index)
         .with_scalar("curvedness", &curvedness)
         .with_scalar("gaussian_discrete", &c.gaussian_discrete)
@@ -255,9 +248,9 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
         .with_scalar("gaussian_integrated", &c.gaussian_integrated)
         .with_scalar("mean_integrated", &c.mean_integrated)
         .with_scalar("geodesic_integrated", &c.geodesic_integrated)
-        .with_scalar("valid", &valid)
-        .with_scalar("flag", &flag)
-        .with_scalar("flag_discrete", &flag_discrete);
+        .with_label("valid", &valid)
+        .with_label("flag", &flag)
+        .with_label("flag_discrete", &flag_discrete);
     check_folder(&args.out)?;
     write_mesh(&args.out, view, &binary_ply())?;
 
@@ -346,17 +339,11 @@ mod tests {
         crate::commands::parse_args("curvature", extra)
     }
 
-    const FIELDS: [&str; 20] = [
+    const FIELDS: [&str; 11] = [
         "gaussian",
         "mean",
         "k1",
         "k2",
-        "d1x",
-        "d1y",
-        "d1z",
-        "d2x",
-        "d2y",
-        "d2z",
         "shape_index",
         "curvedness",
         "gaussian_discrete",
@@ -364,10 +351,25 @@ mod tests {
         "gaussian_integrated",
         "mean_integrated",
         "geodesic_integrated",
-        "valid",
-        "flag",
-        "flag_discrete",
     ];
+    const VECTORS: [&str; 2] = ["d1", "d2"];
+    const LABELS: [&str; 3] = ["valid", "flag", "flag_discrete"];
+
+    /// Every field of the file is there, finite, and of its kind.
+    fn check_kinds(data: &mesh_io::MeshData, file: &str) {
+        for name in FIELDS {
+            let v = data.scalar(name).unwrap_or_else(|| panic!("{file}: missing {name}"));
+            assert!(v.iter().all(|x| x.is_finite()), "{file} {name}");
+        }
+        for name in VECTORS {
+            let v = data.vector(name).unwrap_or_else(|| panic!("{file}: missing vector {name}"));
+            assert!(v.iter().all(|d| d.is_finite()), "{file} {name}");
+        }
+        for name in LABELS {
+            assert!(data.label(name).is_some(), "{file}: missing label {name}");
+        }
+        assert_eq!(data.scalars.len(), FIELDS.len(), "{file}: no vector component or flag read as a scalar");
+    }
 
     #[test]
     fn writes_every_property_of_a_torus() {
@@ -377,17 +379,23 @@ mod tests {
         let summary = write_fields(&a).unwrap();
         let data = mesh_io::read(&out).unwrap();
         assert_eq!(data.mesh.vertex_count(), 64 * 16);
-        for name in FIELDS {
-            let v = data.scalar(name).unwrap_or_else(|| panic!("missing {name}"));
-            assert!(v.iter().all(|x| x.is_finite()), "{name}");
-        }
+        check_kinds(&data, "torus");
+        // d1 is the direction of k1 = 1 / r: across the tube, orthogonal to the axis's circle.
+        let d1 = data.vector("d1").unwrap();
+        let across = |i: usize| {
+            let p = data.mesh.positions()[i];
+            let around = mesh_kernel::glam::DVec3::new(-p.y, p.x, 0.0).normalize();
+            d1[i].dot(around).abs()
+        };
+        assert!((0..d1.len()).all(|i| across(i) < 0.05 && (d1[i].length() - 1.0).abs() < 1e-9));
         // Torus R = 2, r = 0.5: k1 = 2 everywhere, H = (k1 + k2) / 2 written as `mean`.
         assert!(data.scalar("k1").unwrap().iter().all(|k| (k - 2.0).abs() < 0.05));
         let (k1, k2, mean) = (data.scalar("k1").unwrap(), data.scalar("k2").unwrap(), data.scalar("mean").unwrap());
         assert!((0..k1.len()).all(|i| (mean[i] - 0.5 * (k1[i] + k2[i])).abs() < 1e-12));
         // Nothing flagged on a smooth closed torus; Gauss-Bonnet on the integrated values.
         assert_eq!((summary.flagged.total, summary.flagged_discrete.total), (0, 0));
-        assert!(data.scalar("flag").unwrap().iter().all(|f| *f == 0.0));
+        assert!(data.label("flag").unwrap().iter().all(|f| *f == 0));
+        assert!(data.label("valid").unwrap().iter().all(|v| *v == 1));
         let total: f64 = data.scalar("gaussian_integrated").unwrap().iter().sum();
         assert!(total.abs() < 1e-9 && (summary.gauss_bonnet_total - summary.two_pi_chi).abs() < 1e-9);
         // Positions survive as doubles.
@@ -432,14 +440,14 @@ mod tests {
         let out = dir.path().join("c.ply");
         let summary = write_fields(&args(&["--shape", "cube", "--res", "8", "--out", out.to_str().unwrap()])).unwrap();
         let data = mesh_io::read(&out).unwrap();
-        let flag = data.scalar("flag").unwrap();
-        let flagged = flag.iter().filter(|f| **f != 0.0).count();
+        let flag = data.label("flag").unwrap();
+        let flagged = flag.iter().filter(|f| **f != 0).count();
         assert!(flagged > 0 && flagged == summary.flagged.total, "{flagged} vs {:?}", summary.flagged);
         assert_eq!(summary.flagged.by_reason.get("unresolved"), Some(&flagged));
-        let code = f64::from(CurvatureFlag::Unresolved.code());
+        let code = i64::from(CurvatureFlag::Unresolved.code());
         let (gaussian, mean) = (data.scalar("gaussian").unwrap(), data.scalar("mean").unwrap());
         for i in 0..flag.len() {
-            assert!(flag[i] == 0.0 || (flag[i] == code && gaussian[i] == 0.0 && mean[i] == 0.0));
+            assert!(flag[i] == 0 || (flag[i] == code && gaussian[i] == 0.0 && mean[i] == 0.0));
         }
     }
 
@@ -452,10 +460,8 @@ mod tests {
             let input = dir.join(file);
             let summary = write_fields(&args(&[input.to_str().unwrap(), "--out", out.to_str().unwrap()])).unwrap();
             let data = mesh_io::read(&out).unwrap();
-            for name in FIELDS {
-                assert!(data.scalar(name).unwrap().iter().all(|x| x.is_finite()), "{file} {name}");
-            }
-            let flagged = data.scalar("flag").unwrap().iter().filter(|f| **f != 0.0).count();
+            check_kinds(&data, file);
+            let flagged = data.label("flag").unwrap().iter().filter(|f| **f != 0).count();
             assert_eq!(flagged, summary.flagged.total, "{file}");
             if file == "npm_dragon_res3.ply" {
                 // 2,094 non-manifold edges: their vertices are flagged, not measured.

@@ -228,18 +228,17 @@ pub fn run(args: &Args) -> CliResult<()> {
 
     check_folder(&args.out)?;
     let mut view = MeshView::new(mesh).with_scalar("distance", d);
-    let flag = |which: HeatStatus| -> Vec<f64> {
-        field.status.iter().flatten().map(|s| if *s == which { 1.0 } else { 0.0 }).collect()
-    };
+    let flag =
+        |which: HeatStatus| -> Vec<i64> { field.status.iter().flatten().map(|s| i64::from(*s == which)).collect() };
     let (far_field, unresolved) = (flag(HeatStatus::FarField), flag(HeatStatus::Unresolved));
     if field.status.is_some() {
-        view = view.with_scalar("far_field", &far_field).with_scalar("unresolved", &unresolved);
+        view = view.with_label("far_field", &far_field).with_label("unresolved", &unresolved);
     }
     write_mesh(&args.out, view, &binary_ply())?;
     let heat = field.status.as_ref().map(|_| HeatSummary {
         far_field: args.far_field.clone(),
-        far_field_vertices: far_field.iter().filter(|x| **x > 0.0).count(),
-        unresolved_vertices: unresolved.iter().filter(|x| **x > 0.0).count(),
+        far_field_vertices: far_field.iter().filter(|x| **x > 0).count(),
+        unresolved_vertices: unresolved.iter().filter(|x| **x > 0).count(),
     });
 
     let (path, trace_ms) = match (args.path_from, &args.path_out) {
@@ -429,7 +428,7 @@ mod tests {
             let (input, out) = (input.to_str().unwrap(), out.to_str().unwrap());
             run(&args(&[input, "--source", "0", "--far-field", far_field, "--out", out])).unwrap();
             let data = mesh_io::read(out).unwrap();
-            let count = |name: &str| data.scalar(name).unwrap().iter().filter(|x| **x == 1.0).count();
+            let count = |name: &str| data.label(name).unwrap().iter().filter(|x| **x == 1).count();
             let d = data.scalar("distance").unwrap();
             let worst = d.iter().zip(strip.positions()).map(|(x, p)| (x - p.length()).abs()).fold(0.0, f64::max);
             match far_field {

@@ -175,11 +175,50 @@ impl From<&mesh_io::ReadReport> for ReadSummary {
     }
 }
 
-/// `mesh info --json`: the measures and what reading changed.
+/// One attribute of the file, as `mesh info` lists it.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct AttributeSummary {
+    /// The name (`normals`, `uvs`, `colors` for the standard ones).
+    pub name: String,
+    /// `vertex`, `face` or `corner` (per face corner).
+    pub element: String,
+    /// `scalar`, `vector`, `label`, or `uv` and `color` for the standard ones.
+    pub kind: String,
+    /// Numbers per value.
+    pub arity: usize,
+}
+
+impl AttributeSummary {
+    /// Every attribute of `data`: the standard ones (normals, texture
+    /// coordinates, colours), then the named ones in the order of
+    /// [`mesh_io::MeshData::attributes`].
+    pub fn list(data: &mesh_io::MeshData) -> Vec<Self> {
+        let entry = |name: &str, element: &str, kind: &str, arity: usize| Self {
+            name: name.to_owned(),
+            element: element.to_owned(),
+            kind: kind.to_owned(),
+            arity,
+        };
+        let standard = [
+            (data.normals.is_some(), entry("normals", "vertex", "vector", 3)),
+            (data.uvs.is_some(), entry("uvs", "vertex", "uv", 2)),
+            (data.corner_uvs.is_some(), entry("uvs", "corner", "uv", 2)),
+            (data.colors.is_some(), entry("colors", "vertex", "color", 4)),
+        ];
+        let mut out: Vec<Self> = standard.into_iter().filter(|(on, _)| *on).map(|(_, a)| a).collect();
+        out.extend(
+            data.attributes().iter().map(|a| entry(a.name, &a.element.to_string(), &a.kind().to_string(), a.arity())),
+        );
+        out
+    }
+}
+
+/// `mesh info --json`: the measures, the file's attributes and what reading changed.
 #[derive(Serialize)]
 struct InfoJson<'a> {
     #[serde(flatten)]
     info: &'a Info,
+    attributes: Vec<AttributeSummary>,
     read: ReadSummary,
 }
 
@@ -187,10 +226,17 @@ struct InfoJson<'a> {
 pub fn run(args: &Args) -> CliResult<()> {
     let data = args.input.load()?;
     let info = Info::of(&data.mesh);
+    let attributes = AttributeSummary::list(&data);
     if args.json {
-        print_json(&InfoJson { info: &info, read: ReadSummary::from(&data.report) })
+        print_json(&InfoJson { info: &info, attributes, read: ReadSummary::from(&data.report) })
     } else {
         info.print_text(&args.input.describe());
+        if attributes.is_empty() {
+            println!("  attributes         none");
+        }
+        for a in &attributes {
+            println!("  attribute          {} {} {} ({} per value)", a.element, a.kind, a.name, a.arity);
+        }
         println!("  read               {}", data.report);
         Ok(())
     }

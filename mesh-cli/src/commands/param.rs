@@ -6,15 +6,17 @@
 //! mean-value, harmonic, authalic, intrinsic, LSCM or ARAP weights, the
 //! charts are scaled to their surface area and packed without overlap.
 //! Writes an OBJ with texture coordinates (one `vt` per vertex when no vertex
-//! has two, per corner otherwise) and prints what cleaning did, the charts
-//! and their distortion (eq. 2.8-2.11).
+//! has two, per corner otherwise), or a PLY that adds per-face attributes
+//! (the chart of each face and its distortion, eq. 2.8-2.9), and prints
+//! what cleaning did, the charts and their distortion (eq. 2.8-2.11).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use mesh_io::MeshView;
 use mesh_kernel::clean::CleanOptions;
-use mesh_kernel::TriMesh;
+use mesh_kernel::{FaceId, TriMesh};
+use mesh_param::distortion::face_distortion;
 use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSummary, Method, Spacing};
 use serde::Serialize;
 
@@ -26,8 +28,13 @@ use crate::output::{check_folder, check_output, finite, print_json, write_mesh, 
 pub struct Args {
     #[command(flatten)]
     pub(crate) input: InputArgs,
-    /// Output OBJ file with one `vt` per vertex (per corner along seams).
-    #[arg(long, value_name = "OUT.obj")]
+    /// Output file: OBJ with one `vt` per vertex (per corner along seams),
+    /// or PLY (the UVs, plus per-face int labels `chart` and
+    /// `distortion_flag` (0 measured, 1 flipped, 2 collapsed in the plane,
+    /// 3 zero surface area) and double `angle_distortion` (sigma1 / sigma2)
+    /// and `area_scale` (sigma1 sigma2 with the atlas's UV scale divided
+    /// out; 1 where a face keeps its area), both 0 where not measured).
+    #[arg(long, value_name = "OUT.obj|OUT.ply")]
     out: PathBuf,
     /// tutte, mean-value, harmonic, authalic, intrinsic, lscm or arap.
     #[arg(long, default_value = "mean-value")]
@@ -335,13 +342,22 @@ fn execute(args: &Args) -> CliResult<Summary> {
     let a = atlas(&mesh, &options)?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
     let vertex_uvs = a.vertex_uvs(mesh.vertex_count());
-    let view = match &vertex_uvs {
+    let mut view = match &vertex_uvs {
         Some(uv) => MeshView::new(&mesh).with_uvs(uv),
         None => MeshView::new(&mesh).with_corner_uvs(&a.corner_uvs),
     };
+    let ply = mesh_io::Format::from_path(&args.out).ok() == Some(mesh_io::Format::Ply);
+    let per_face = FaceFields::new(&mesh, &a);
+    if ply {
+        view = view
+            .with_face_label("chart", &per_face.chart)
+            .with_face_label("distortion_flag", &per_face.flag)
+            .with_face_scalar("angle_distortion", &per_face.angle)
+            .with_face_scalar("area_scale", &per_face.area);
+    }
     check_folder(&args.out)?;
-    let write = mesh_io::WriteOptions { format: Some(mesh_io::Format::Obj), ..Default::default() };
-    write_mesh(&args.out, view, &write)?;
+    let format = if ply { mesh_io::Format::Ply } else { mesh_io::Format::Obj };
+    write_mesh(&args.out, view, &mesh_io::WriteOptions { format: Some(format), ..Default::default() })?;
     Ok(Summary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -349,6 +365,44 @@ fn execute(args: &Args) -> CliResult<Summary> {
         faces,
         ..summarize(cleaning, &options.method, &a, vertex_uvs.is_none(), time_ms)
     })
+}
+
+/// Per-face values of an atlas as written to PLY.
+struct FaceFields {
+    /// The chart of each face (-1 for a face in none).
+    chart: Vec<i64>,
+    /// 0 measured, 1 flipped, 2 collapsed in the plane, 3 zero surface area.
+    flag: Vec<i64>,
+    /// sigma1 / sigma2 (eq. 2.8-2.9), 0 where not measured.
+    angle: Vec<f64>,
+    /// sigma1 sigma2 times the atlas's scale squared, 0 where not measured.
+    area: Vec<f64>,
+}
+
+impl FaceFields {
+    /// Per-face distortion of the atlas's corner UVs on `mesh`
+    /// (`mesh_param::distortion::face_distortion` on each face). O(F).
+    fn new(mesh: &TriMesh, atlas: &Atlas) -> Self {
+        let n = mesh.face_count();
+        let mut out = Self { chart: Vec::with_capacity(n), flag: vec![0; n], angle: vec![0.0; n], area: vec![0.0; n] };
+        out.chart.extend(atlas.face_chart.iter().map(|&c| if c == u32::MAX { -1 } else { i64::from(c) }));
+        let square = atlas.scale * atlas.scale;
+        for (f, q) in atlas.corner_uvs.iter().enumerate() {
+            let d = face_distortion(mesh.triangle(FaceId::new(f)), *q);
+            out.flag[f] = match (d.degenerate, d.collapsed, d.uv_signed_area < 0.0) {
+                (true, _, _) => 3,
+                (false, true, _) => 2,
+                (false, false, true) => 1,
+                (false, false, false) => 0,
+            };
+            if out.flag[f] <= 1 && d.angle_distortion.is_finite() && (d.area_scale * square).is_finite() {
+                (out.angle[f], out.area[f]) = (d.angle_distortion, d.area_scale * square);
+            } else {
+                out.flag[f] = out.flag[f].max(2);
+            }
+        }
+        out
+    }
 }
 
 /// Runs `mesh param`.
@@ -522,6 +576,44 @@ mod tests {
         let data = mesh_io::read(&out).unwrap();
         let corners = data.corner_uvs.as_ref().expect("per-corner UVs along the seam");
         assert_eq!(corners.len(), data.mesh.face_count());
+    }
+
+    #[test]
+    fn ply_output_has_per_face_charts_and_distortion() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("a.ply");
+        let v = ["--shape", "torus", "--res", "8", "--method", "tutte", "--max-chart-faces", "40"];
+        let mut v = v.to_vec();
+        v.extend(["--json", "--out", out.to_str().unwrap()]);
+        let summary = execute(&args(&v)).unwrap();
+        let data = mesh_io::read(&out).unwrap();
+        let nf = data.mesh.face_count();
+        let chart = data.face_label("chart").unwrap();
+        assert_eq!(chart.len(), nf);
+        let charts: std::collections::BTreeSet<i64> = chart.iter().copied().collect();
+        assert_eq!(charts.len(), summary.charts, "every chart has faces, no face is in none");
+        assert!(charts.iter().all(|&c| c >= 0));
+        let (flag, angle, area) = (
+            data.face_label("distortion_flag").unwrap(),
+            data.face_scalar("angle_distortion").unwrap(),
+            data.face_scalar("area_scale").unwrap(),
+        );
+        // Tutte maps are bijective: nothing flipped or collapsed on a torus of
+        // equal-area-ish faces, and every angle distortion is at least 1.
+        assert!(flag.iter().all(|&f| f == 0), "{flag:?}");
+        assert!(angle.iter().all(|&x| x >= 1.0 - 1e-12 && x.is_finite()));
+        assert!(area.iter().all(|&x| x > 0.0 && x.is_finite()));
+        // The area-weighted mean of the per-face angle distortion is the summary's.
+        let areas = mesh_kernel::geometry::face_areas(&data.mesh);
+        let mean = angle.iter().zip(&areas).map(|(a, w)| a * w).sum::<f64>() / areas.iter().sum::<f64>();
+        let expected = summary.distortion.angle_distortion_mean.unwrap();
+        assert!((mean - expected).abs() < 1e-9 * expected, "{mean} vs {expected}");
+        // The same atlas as OBJ carries no per-face values and says nothing about them.
+        let obj = dir.path().join("a.obj");
+        v.truncate(v.len() - 1);
+        v.push(obj.to_str().unwrap());
+        execute(&args(&v)).unwrap();
+        assert!(mesh_io::read(&obj).unwrap().face_labels.is_empty());
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! `mesh render`: a PNG picture of a mesh, optionally coloured by one of its
-//! per-vertex fields (a PLY property such as `mean` or `distance`).
+//! per-vertex scalars or labels (a PLY property such as `mean`, `distance`
+//! or the curvature `flag`).
 
 use std::path::PathBuf;
 
@@ -15,7 +16,8 @@ pub struct Args {
     /// Output PNG file.
     #[arg(long)]
     out: PathBuf,
-    /// Per-vertex field of the input file to colour by (e.g. `mean`, `distance`).
+    /// Per-vertex scalar or label of the input file to colour by (e.g.
+    /// `mean`, `distance`, `flag`).
     #[arg(long)]
     field: Option<String>,
     /// Picture width in pixels.
@@ -52,17 +54,29 @@ pub fn axis(name: &str, input: &InputArgs) -> CliResult<mesh_kernel::glam::DVec3
     }
 }
 
+/// The per-vertex scalar or label `name` of `data` as numbers to colour by.
+fn vertex_field<'a>(data: &'a mesh_io::MeshData, name: &str) -> CliResult<std::borrow::Cow<'a, [f64]>> {
+    if let Some(values) = data.scalar(name) {
+        return Ok(values.into());
+    }
+    if let Some(labels) = data.label(name) {
+        return Ok(labels.iter().map(|&x| x as f64).collect::<Vec<f64>>().into());
+    }
+    let known: Vec<String> = data
+        .attributes()
+        .iter()
+        .filter(|a| a.element == mesh_io::AttributeElement::Vertex && a.kind() != mesh_io::AttributeKind::Vector)
+        .map(|a| a.name.to_owned())
+        .collect();
+    Err(format!("the input has no per-vertex scalar or label `{name}` (it has: {})", known.join(", ")).into())
+}
+
 /// Runs `mesh render`.
 pub fn run(args: &Args) -> CliResult<()> {
     check_output(&args.out, args.input.path(), false)?;
     let data = args.input.load()?;
-    let scalar = match &args.field {
-        Some(name) => Some(data.scalar(name).ok_or_else(|| {
-            let known: Vec<&str> = data.scalars.iter().map(|(n, _)| n.as_str()).collect();
-            format!("the input has no per-vertex field `{name}` (it has: {})", known.join(", "))
-        })?),
-        None => None,
-    };
+    let field = args.field.as_deref().map(|name| vertex_field(&data, name)).transpose()?;
+    let scalar = field.as_deref();
     if !(args.azimuth.is_finite() && args.elevation.is_finite()) {
         return Err("camera angles must be finite".into());
     }

@@ -1,7 +1,8 @@
 //! The valid files the fuzzer mutates: small meshes built from mesh-kernel's
 //! shapes, written by mesh-io's own writers in every format and variant
 //! (PLY ascii / binary little / binary big endian, float and double, with
-//! normals, texture coordinates, colours and a scalar; STL ascii and binary;
+//! normals, texture coordinates, colours, a scalar, a vector, a label and
+//! per-face values; STL ascii and binary;
 //! glTF with a `data:` URI buffer; GLB), a few hand-written files with the
 //! features the writers never produce (polygons, negative OBJ indices,
 //! comments, extra PLY elements), and the shared test meshes under 20 KB.
@@ -38,12 +39,16 @@ fn shapes() -> Vec<(&'static str, TriMesh)> {
     out
 }
 
-/// Per-vertex attributes of a mesh: normals, uvs, colours and one scalar.
+/// Attributes of a mesh: per-vertex normals, uvs, colours, a scalar, a
+/// vector and a label; per-face a scalar and a label.
 struct Attributes {
     normals: Vec<DVec3>,
     uvs: Vec<DVec2>,
     colors: Vec<[f32; 4]>,
     scalar: Vec<f64>,
+    label: Vec<i64>,
+    face_scalar: Vec<f64>,
+    face_label: Vec<i64>,
 }
 
 impl Attributes {
@@ -54,6 +59,9 @@ impl Attributes {
             uvs: p.iter().map(|q| DVec2::new(q.x, q.y)).collect(),
             colors: p.iter().map(|q| [0.5 + 0.25 * q.x.clamp(-1.0, 1.0) as f32, 0.5, 0.25, 1.0]).collect(),
             scalar: p.iter().map(|q| q.z * 3.0 + 0.125).collect(),
+            label: (0..p.len()).map(|i| i as i64 % 5 - 2).collect(),
+            face_scalar: (0..mesh.face_count()).map(|f| f as f64 * 0.5 + 1.0).collect(),
+            face_label: (0..mesh.face_count()).map(|f| (f / 2) as i64).collect(),
         }
     }
 
@@ -63,6 +71,10 @@ impl Attributes {
             .with_uvs(&self.uvs)
             .with_colors(&self.colors)
             .with_scalar("quality", &self.scalar)
+            .with_vector("direction", &self.normals)
+            .with_label("segment", &self.label)
+            .with_face_scalar("distortion", &self.face_scalar)
+            .with_face_label("chart", &self.face_label)
     }
 }
 
@@ -107,6 +119,12 @@ fn handwritten(format: Format) -> Vec<(&'static str, &'static str)> {
              property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\n\
              property list uchar int vertex_indices\nelement edge 1\nproperty int vertex1\nproperty int vertex2\n\
              end_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 1 2 3\n4 0 1 2 3\n3 0 2 3\n0 1\n",
+        ), (
+            "ascii, a NAME_x vector, a label, face properties around the list",
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+             property float d_x\nproperty float d_y\nproperty float d_z\nproperty short segment\nelement face 2\n\
+             property uchar flags\nproperty list uchar int vertex_indices\nproperty float quality\nend_header\n\
+             0 0 0 1 0 0 -1\n1 0 0 0 1 0 2\n1 1 0 0 0 1 3\n0 1 0 1 1 1 4\n7 4 0 1 2 3 0.5\n1 3 0 2 3 0.25\n",
         )],
         Format::Stl => vec![(
             "ascii with a name",
