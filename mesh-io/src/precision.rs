@@ -51,16 +51,18 @@ impl WriteReport {
 impl std::fmt::Display for WriteReport {
     /// One line, e.g. `values rounded to 32-bit floats by up to 3.1e-5 relative`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.values_lost == 0 && self.max_relative_rounding <= PRECISION_WARNING {
-            f.write_str("values stored within 1e-6 relative")?;
-        } else {
+        let rounded = self.values_lost > 0 || self.max_relative_rounding > PRECISION_WARNING;
+        if rounded {
             write!(f, "values rounded to 32-bit floats by up to {:.1e} relative", self.max_relative_rounding)?;
+        } else if self.dropped.is_empty() {
+            f.write_str("values stored within 1e-6 relative")?;
         }
         if self.values_lost > 0 {
             write!(f, "; {} values lost (infinite or zero in 32-bit floats)", self.values_lost)?;
         }
         if !self.dropped.is_empty() {
-            write!(f, "; not stored by this format: {}", self.dropped.join(", "))?;
+            let separator = if rounded { "; " } else { "" };
+            write!(f, "{separator}not stored by this format: {}", self.dropped.join(", "))?;
         }
         Ok(())
     }
@@ -257,6 +259,17 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.to_string().contains("scalar `mean` of vertex 1"), "{e}");
+    }
+
+    #[test]
+    fn the_line_names_what_was_dropped() {
+        let dropped = WriteReport { dropped: vec!["face label `chart`".into()], ..WriteReport::default() };
+        assert_eq!(dropped.to_string(), "not stored by this format: face label `chart`");
+        let both = WriteReport { max_relative_rounding: 1e-3, ..dropped };
+        assert!(
+            both.to_string().starts_with("values rounded")
+                && both.to_string().ends_with("; not stored by this format: face label `chart`")
+        );
     }
 
     #[test]
