@@ -1,6 +1,6 @@
 //! End-to-end tests of the `mesh` binary.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use serde_json::Value;
@@ -14,16 +14,6 @@ fn json(args: &[&str]) -> Value {
     let (ok, stdout, stderr) = mesh(args);
     assert!(ok, "mesh {args:?} failed: {stderr}");
     serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("mesh {args:?} printed invalid JSON ({e}): {stdout}"))
-}
-
-fn shared_data() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipping: {} is absent", dir.display());
-        None
-    }
 }
 
 #[test]
@@ -74,25 +64,15 @@ fn info_lists_attributes_with_kind_and_arity() {
 
 #[test]
 fn info_matches_the_shared_data_readme() {
-    let Some(dir) = shared_data() else { return };
-    // file, V, F, chi, genus, boundary loops (from shared/data/README.md).
-    let table: [(&str, u64, u64, i64, u64, u64); 7] = [
-        ("cgal_nefertiti.off", 299, 562, 1, 0, 1),
-        ("cgal_mushroom.off", 2337, 4608, 1, 0, 1),
-        ("cgal_elephant.off", 2775, 5558, -4, 3, 0),
-        ("cgal_fandisk.off", 6475, 12946, 2, 0, 0),
-        ("npm_bunny.obj", 1839, 3674, 2, 0, 0),
-        ("cgal_holes.off", 4291, 8288, -5, 0, 7),
-        ("cgal_degtri_sliding.off", 8, 8, 1, 0, 1),
-    ];
-    for (file, v, f, chi, genus, loops) in table {
-        let path = dir.join(file);
+    let Some(dir) = mesh_testkit::shared_data() else { return };
+    for m in mesh_testkit::data::SHARED_MESHES {
+        let (file, path) = (m.name, dir.join(m.name));
         let info = json(&["info", "--json", path.to_str().unwrap()]);
-        assert_eq!(info["vertices"], v, "{file}");
-        assert_eq!(info["faces"], f, "{file}");
-        assert_eq!(info["euler_characteristic"], chi, "{file}");
-        assert_eq!(info["genus"], genus, "{file}");
-        assert_eq!(info["boundary_loops"], loops, "{file}");
+        assert_eq!(info["vertices"], m.vertices, "{file}");
+        assert_eq!(info["faces"], m.faces, "{file}");
+        assert_eq!(info["euler_characteristic"], m.euler, "{file}");
+        assert_eq!(info["genus"], m.genus, "{file}");
+        assert_eq!(info["boundary_loops"], m.boundary_loops, "{file}");
         assert_eq!(info["manifold"], true, "{file}");
     }
 }
@@ -124,7 +104,7 @@ fn defects_are_counted_without_panic() {
 
 #[test]
 fn clean_manifold_repairs_the_dirty_dragon_scan() {
-    let Some(data) = shared_data() else { return };
+    let Some(data) = mesh_testkit::shared_data() else { return };
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("clean.ply");
     let input = data.join("npm_dragon_res3.ply");

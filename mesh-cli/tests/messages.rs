@@ -150,12 +150,9 @@ fn heat_on_zero_area_faces_says_which_flag_to_pass() {
         contains_all(&stderr, &["--laplacian intrinsic"]);
         assert!(!stderr.contains("NonPositivePivot"), "{stderr}");
     }
-    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/cgal_degtri_sliding.off");
-    if shared.is_file() {
+    if let Some(shared) = mesh_testkit::shared_file("cgal_degtri_sliding.off") {
         let args = ["geodesic", shared.to_str().unwrap(), "--source", "0", "--laplacian", "cotan", "--out", out];
         contains_all(&fails(&args), &["pass --laplacian intrinsic"]);
-    } else {
-        eprintln!("skipping the shared-data part: {} is absent", shared.display());
     }
     let (ok, _, stderr) = mesh(&["geodesic", &file, "--source", "0", "--laplacian", "intrinsic", "--out", out]);
     if !ok {

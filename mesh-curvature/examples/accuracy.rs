@@ -59,11 +59,8 @@ fn cylinder(around: usize, along: usize, margin: usize) -> (TriMesh, Truth) {
 fn jittered_sphere(level: u32, amount: f64) -> (TriMesh, Truth) {
     let (m, t) = sphere(level);
     let h = 1.1 / 2f64.powi(level as i32);
-    let mut state = 0x1234_5678_9abc_def0u64;
-    let mut rnd = || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut rng = mesh_testkit::SplitMix64::new(0x1234_5678_9abc_def0);
+    let mut rnd = || rng.signed();
     let p: Vec<DVec3> =
         m.positions().iter().map(|p| (*p + amount * h * DVec3::new(rnd(), rnd(), rnd())).normalize()).collect();
     (TriMesh::new(p, m.faces().to_vec()).unwrap(), t)

@@ -1,4 +1,4 @@
-//! Dijkstra's algorithm on the edge graph: the seed's upper-bound estimate
+//! Dijkstra's algorithm on the edge graph: the chapter's upper-bound estimate
 //! of geodesic distance (section 2.6, figure 2.10), with the shortest-path
 //! tree and edge-path extraction.
 //!
@@ -66,7 +66,7 @@ impl ShortestPaths {
     }
 }
 
-/// Multi-source Dijkstra on the edge graph of `mesh` (seed 2.6): exact
+/// Multi-source Dijkstra on the edge graph of `mesh` (chapter section 2.6): exact
 /// shortest edge-path lengths, an upper bound of the geodesic distance.
 /// Works on any triangle soup (non-manifold, disconnected, degenerate).
 /// Duplicate sources are allowed. Cost O((V + E) log V).

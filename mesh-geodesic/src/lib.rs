@@ -1,8 +1,9 @@
-//! Geodesic distances and paths on triangle meshes (seed section 2.6):
+//! Geodesic distances and paths on triangle meshes (section 2.6 of the
+//! "Digital Shape Processing" thesis chapter):
 //! graph distances, Fast Marching, the heat method, gradient-flow path
 //! tracing and geodesic sampling, on any [`mesh_kernel::TriMesh`].
 //!
-//! | module | what it holds | seed / paper |
+//! | module | what it holds | chapter / paper |
 //! |---|---|---|
 //! | [`dijkstra`](mod@dijkstra) | multi-source Dijkstra on the edge graph, shortest-path tree, edge paths | 2.6 (upper bound) |
 //! | [`exact`] | exact polyhedral distances by window propagation with the vertex-distance filter | Mitchell, Mount and Papadimitriou 1987; Surazhsky et al. 2005; Xin and Wang 2009 |

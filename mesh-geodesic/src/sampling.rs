@@ -1,5 +1,5 @@
 //! Geodesic sampling: farthest-point sampling and geodesic Voronoi regions
-//! (the seed's geodesic Delaunay / Voronoi tools of section 2.6).
+//! (the chapter's geodesic Delaunay / Voronoi tools of section 2.6).
 //!
 //! Farthest-point sampling (Eldar, Lindenbaum, Porat and Zeevi 1997; Moenning
 //! and Dodgson 2003 on surfaces) adds, one at a time, the vertex farthest

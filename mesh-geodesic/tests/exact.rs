@@ -166,11 +166,9 @@ fn bad_input_is_an_error() {
 /// `amplitude` (saddles and convex vertices mixed).
 fn random_mesh(torus: bool, seed: u64, amplitude: f64) -> TriMesh {
     let mut mesh = if torus { shapes::torus(1.0, 0.4, 16, 8).unwrap() } else { shapes::icosphere(2).unwrap() };
-    let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    let mut rng = mesh_testkit::SplitMix64::new(seed);
     for p in mesh.positions_mut() {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        let r = (state >> 11) as f64 / (1u64 << 53) as f64;
-        *p *= 1.0 + amplitude * (2.0 * r - 1.0);
+        *p *= 1.0 + amplitude * rng.signed();
     }
     mesh
 }

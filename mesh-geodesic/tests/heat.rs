@@ -86,8 +86,8 @@ fn one_factorization_answers_many_source_sets() {
 
 #[test]
 fn zero_area_triangles_stay_finite_with_the_intrinsic_laplacian() {
-    let Some(dir) = common::data_dir() else { return };
-    let mesh = common::read_mesh(&dir.join("cgal_degtri_sliding.off"));
+    let Some(path) = mesh_testkit::shared_file("cgal_degtri_sliding.off") else { return };
+    let mesh = common::tri_mesh(mesh_testkit::read_raw(&path).unwrap());
     // libigl returns NaN here. Eight vertices with t = h^2 about the mesh
     // size: the values are rough (potpourri3d's are too), but finite,
     // positive off the source and below 1.5 times the edge-graph distance.

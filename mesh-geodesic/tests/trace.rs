@@ -85,11 +85,8 @@ fn terminates_on_adversarial_fields() {
     let sources = [VertexId(0), VertexId(200)];
     // Pseudo-random fields full of local minima, a constant field, a field
     // increasing towards the sources, and a boundary mesh.
-    let mut seed = 12345u64;
-    let mut noise = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = mesh_testkit::SplitMix64::new(12345);
+    let mut noise = || rng.unit();
     let fields: Vec<Vec<f64>> = vec![
         (0..n).map(|_| noise()).collect(),
         vec![1.0; n],

@@ -1,7 +1,7 @@
 //! Read and write throughput of every format and encoding, in bytes of file
 //! per second, on generated grids of ~1e5 and ~1e6 vertices (files in a
 //! temporary directory, so reads include `fs::read` from the page cache and
-//! writes the atomic rename), on `shared/data/cgal_fandisk.off` when present,
+//! writes the atomic rename), on the shared mesh `cgal_fandisk.off` when present,
 //! and `tobj` on the same OBJ as a baseline.
 //!
 //! `cargo bench -p mesh-io --bench io -- --warm-up-time 1 --measurement-time 3`
@@ -101,11 +101,7 @@ fn large(c: &mut Criterion) {
 }
 
 fn fandisk(c: &mut Criterion) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/cgal_fandisk.off");
-    if !path.is_file() {
-        eprintln!("skipped: {} is absent", path.display());
-        return;
-    }
+    let Some(path) = mesh_testkit::shared_file("cgal_fandisk.off") else { return };
     let mut group = c.benchmark_group("read/fandisk");
     group.throughput(Throughput::Bytes(file_size(&path)));
     group.bench_function("off", |b| b.iter(|| mesh_io::read(&path).expect("read")));

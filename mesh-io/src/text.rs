@@ -130,6 +130,9 @@ impl<'a> Scanner<'a> {
     }
 
     /// A float on this line, `None` at the end of the line.
+    ///
+    /// # Errors
+    /// A syntax error naming `what` when the next word is not a number.
     #[inline]
     pub fn opt_float(&mut self, what: &str) -> Result<Option<f64>> {
         if self.at_line_end() {
@@ -145,6 +148,10 @@ impl<'a> Scanner<'a> {
     }
 
     /// A float on this line.
+    ///
+    /// # Errors
+    /// A syntax error naming `what` at the end of the line or when the next
+    /// word is not a number.
     #[inline]
     pub fn float(&mut self, what: &str) -> Result<f64> {
         self.opt_float(what)?.ok_or_else(|| self.error(what))
@@ -152,6 +159,9 @@ impl<'a> Scanner<'a> {
 
     /// A (possibly signed) integer on this line, `None` at the end of the line.
     /// Stops before a `/` (OBJ face corners).
+    ///
+    /// # Errors
+    /// A syntax error naming `what` when the next word is not an integer.
     #[inline]
     pub fn opt_int(&mut self, what: &str) -> Result<Option<i64>> {
         if self.at_line_end() {
@@ -167,6 +177,10 @@ impl<'a> Scanner<'a> {
     }
 
     /// An integer on this line.
+    ///
+    /// # Errors
+    /// A syntax error naming `what` at the end of the line or when the next
+    /// word is not an integer.
     #[inline]
     pub fn int(&mut self, what: &str) -> Result<i64> {
         self.opt_int(what)?.ok_or_else(|| self.error(what))
@@ -311,6 +325,9 @@ impl<W: Write> TextWriter<W> {
     }
 
     /// Ends a line, handing the buffer over when it is full.
+    ///
+    /// # Errors
+    /// The writer's I/O error.
     #[inline]
     pub fn line(&mut self) -> Result<()> {
         self.buf.push(b'\n');
@@ -322,6 +339,9 @@ impl<W: Write> TextWriter<W> {
     }
 
     /// Writes out everything left.
+    ///
+    /// # Errors
+    /// The writer's I/O error.
     pub fn finish(mut self) -> Result<()> {
         self.out.write_all(&self.buf)?;
         self.out.flush()?;

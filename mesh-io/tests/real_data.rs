@@ -1,24 +1,22 @@
-//! Every mesh of `shared/data` reads with the vertex and face counts its
-//! README gives (skipped with a message when the folder is absent).
+//! Every shared real mesh reads with the vertex and face counts of its
+//! README (skipped or failed as `mesh_testkit::data` says when the data is
+//! absent).
 
 mod common;
 
 use mesh_io::{read, write, Format, WriteOptions};
 
-const MESHES: [(&str, usize, usize); 7] = [
-    ("cgal_nefertiti.off", 299, 562),
-    ("cgal_mushroom.off", 2337, 4608),
-    ("cgal_elephant.off", 2775, 5558),
-    ("cgal_fandisk.off", 6475, 12946),
-    ("npm_bunny.obj", 1839, 3674),
-    ("cgal_holes.off", 4291, 8288),
-    ("cgal_degtri_sliding.off", 8, 8),
-];
+use mesh_testkit::data::SHARED_MESHES;
+
+/// (file, vertices, faces) of every shared mesh.
+fn meshes() -> impl Iterator<Item = (&'static str, usize, usize)> {
+    SHARED_MESHES.iter().map(|m| (m.name, m.vertices, m.faces))
+}
 
 #[test]
 fn shared_meshes_have_their_readme_counts() {
-    let Some(dir) = common::shared_data() else { return };
-    for (name, v, f) in MESHES {
+    let Some(dir) = mesh_testkit::shared_data() else { return };
+    for (name, v, f) in meshes() {
         let data = read(dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!((data.mesh.vertex_count(), data.mesh.face_count()), (v, f), "{name}");
         assert!(data.report.is_clean(), "{name}: {:?}", data.report);
@@ -27,9 +25,9 @@ fn shared_meshes_have_their_readme_counts() {
 
 #[test]
 fn shared_meshes_survive_every_format() {
-    let Some(dir) = common::shared_data() else { return };
+    let Some(dir) = mesh_testkit::shared_data() else { return };
     let tmp = tempfile::tempdir().unwrap();
-    for (name, v, f) in MESHES {
+    for (name, v, f) in meshes() {
         let data = read(dir.join(name)).unwrap();
         for format in Format::ALL {
             let path = tmp.path().join(format!("m.{}", format.extension()));

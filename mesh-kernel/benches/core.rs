@@ -2,7 +2,6 @@
 //! matrices on meshes from 1e3 to 1e6 vertices, and on the shared meshes.
 
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -68,16 +67,13 @@ fn bench_core(c: &mut Criterion) {
 }
 
 fn bench_shared(c: &mut Criterion) {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    if !dir.is_dir() {
-        eprintln!("skipping shared meshes: {} is absent", dir.display());
-        return;
-    }
+    let Some(dir) = mesh_testkit::shared_data() else { return };
     let mut group = c.benchmark_group("shared");
     group.sample_size(20).warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_secs(1));
     for file in ["cgal_fandisk.off", "cgal_holes.off", "cgal_elephant.off"] {
-        let Ok(text) = std::fs::read_to_string(dir.join(file)) else { continue };
-        let Some(mesh) = parse_off(&text) else { continue };
+        let raw = mesh_testkit::read_raw(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        let positions = raw.positions.into_iter().map(mesh_kernel::glam::DVec3::from).collect();
+        let mesh = TriMesh::new(positions, raw.faces).unwrap_or_else(|e| panic!("{file}: {e}"));
         group.bench_with_input(BenchmarkId::new("connectivity+manifold", file), &mesh, |b, m| {
             b.iter_batched(|| fresh(m), |m| black_box(m.connectivity().is_manifold()), criterion::BatchSize::LargeInput)
         });
@@ -86,25 +82,6 @@ fn bench_shared(c: &mut Criterion) {
         });
     }
     group.finish();
-}
-
-/// A minimal OFF reader for the bench (mesh-io depends on mesh-kernel, not the
-/// other way round).
-fn parse_off(text: &str) -> Option<TriMesh> {
-    let mut tokens = text.split_whitespace().filter(|t| *t != "OFF");
-    let mut next = || tokens.next()?.parse::<f64>().ok();
-    let (nv, nf) = (next()? as usize, next()? as usize);
-    next()?;
-    let positions =
-        (0..nv).map(|_| Some(mesh_kernel::glam::DVec3::new(next()?, next()?, next()?))).collect::<Option<Vec<_>>>()?;
-    let faces = (0..nf)
-        .map(|_| {
-            let k = next()? as usize;
-            let f = [next()? as u32, next()? as u32, next()? as u32];
-            (k == 3).then_some(f)
-        })
-        .collect::<Option<Vec<_>>>()?;
-    TriMesh::new(positions, faces).ok()
 }
 
 criterion_group!(benches, bench_core, bench_shared);

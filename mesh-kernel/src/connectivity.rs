@@ -387,7 +387,7 @@ impl Connectivity {
         out.iter().map(|&h| self.dest(h)).chain(closing).chain(extra)
     }
 
-    /// Number of neighbours of `v` (the seed's valence |N(p_i)|).
+    /// Number of neighbours of `v` (the chapter's valence |N(p_i)|).
     pub fn valence(&self, v: VertexId) -> usize {
         match self.vertex_kind[v.idx()] {
             VertexKind::Isolated => 0,

@@ -91,7 +91,7 @@ pub fn triangle_area(tri: [DVec3; 3]) -> f64 {
     0.5 * norm(double_area_vector(tri)) * unit * unit
 }
 
-/// Unit normal of a counter-clockwise triangle (the seed's face normal, 2.2.2),
+/// Unit normal of a counter-clockwise triangle (the chapter's face normal, section 2.2.2),
 /// or zero when the triangle has no area.
 #[inline]
 pub fn triangle_normal(tri: [DVec3; 3]) -> DVec3 {
@@ -292,7 +292,7 @@ pub fn dihedral_angles(mesh: &TriMesh) -> Vec<f64> {
         .collect()
 }
 
-/// Feature edges (seed 2.2.2): non-boundary edges whose face normals differ
+/// Feature edges (chapter section 2.2.2): non-boundary edges whose face normals differ
 /// by more than `threshold` radians, convex or concave.
 pub fn feature_edges(mesh: &TriMesh, threshold: f64) -> Vec<EdgeId> {
     dihedral_angles(mesh)

@@ -1,8 +1,10 @@
 //! Triangle meshes for geometry processing: the data model shared by every
 //! crate of the mesh workspace, with the connectivity, topology, geometry,
 //! discrete operators and sparse solvers that the algorithm crates build on.
+//! Section and equation numbers (eq. 2.x) refer to the "Digital Shape
+//! Processing" thesis chapter.
 //!
-//! | module | what it holds | seed section |
+//! | module | what it holds | chapter section |
 //! |---|---|---|
 //! | [`mesh`] | [`TriMesh`]: validated `f64` positions and triangles | 2.2.2 |
 //! | [`ids`] | typed indices [`VertexId`], [`FaceId`], [`EdgeId`], [`HalfedgeId`] | |

@@ -98,7 +98,7 @@ pub fn icosphere(level: u32) -> Result<TriMesh> {
     TriMesh::new(positions, faces)
 }
 
-/// One step of 4-to-1 midpoint splitting (seed figure 2.13): returns the old
+/// One step of 4-to-1 midpoint splitting (the chapter's figure 2.13): returns the old
 /// vertices followed by one new vertex per edge (in [`crate::Connectivity`]
 /// edge order, at the edge midpoint), and four faces per face: the three
 /// corner triangles of face `f` at `4 f`, `4 f + 1`, `4 f + 2` and the

@@ -133,8 +133,8 @@ proptest! {
         raw in proptest::collection::vec((0u32..12, 0u32..12, 0u32..12), 1..60),
         seed in 0u64..1000,
     ) {
-        let mut s = seed;
-        let mut next = || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 11) as f64 / (1u64 << 53) as f64 };
+        let mut rng = mesh_testkit::SplitMix64::new(seed);
+        let mut next = || rng.unit();
         let positions: Vec<DVec3> = (0..n).map(|_| DVec3::new(next(), next(), next())).collect();
         let faces: Vec<[u32; 3]> = raw
             .into_iter()

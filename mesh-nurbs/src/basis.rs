@@ -1,5 +1,5 @@
 //! B-spline basis functions `N_{i,k}(u)` by the Cox-de Boor recursion of
-//! eq. 2.1-2.2 of the seed, and their derivatives.
+//! eq. 2.1-2.2 of the chapter, and their derivatives.
 //!
 //! On a knot span `[t_s, t_{s+1})` only the `p + 1` functions
 //! `N_{s-p,p}, ..., N_{s,p}` are non-zero (local support). The span argument

@@ -1,5 +1,5 @@
 //! Exact differential geometry of a NURBS surface at a parameter (section 2.5
-//! of the seed): normal, first and second fundamental forms (eq. 2.21-2.22),
+//! of the chapter): normal, first and second fundamental forms (eq. 2.21-2.22),
 //! Gaussian and mean curvature (eq. 2.23-2.24), principal curvatures and
 //! directions.
 //!

@@ -1,4 +1,4 @@
-//! Knot vectors `U = t_0 <= t_1 <= ... <= t_m` (seed section 2.2.1): validation,
+//! Knot vectors `U = t_0 <= t_1 <= ... <= t_m` (chapter section 2.2.1): validation,
 //! clamped and uniform constructors, span search.
 //!
 //! A knot vector of degree `p` for `n + 1` control points holds `m + 1 = n + p + 2`

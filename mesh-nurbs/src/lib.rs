@@ -1,5 +1,5 @@
 //! NURBS curves and surfaces for the mesh workspace: the B-spline basis of
-//! eq. 2.1-2.2 of the seed (section 2.2.1 of `digital-shape-processing.md`),
+//! eq. 2.1-2.2 of the "Digital Shape Processing" thesis chapter (section 2.2.1),
 //! NURBS surfaces (eq. 2.3-2.4) with exact derivatives, fundamental forms and
 //! curvatures (section 2.5, eq. 2.19-2.24), exact shapes, and tessellation to
 //! a watertight [`mesh_kernel::TriMesh`] carrying the exact curvature of every

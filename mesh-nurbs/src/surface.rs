@@ -1,4 +1,4 @@
-//! NURBS surfaces (eq. 2.3-2.4 of the seed): evaluation, first and second
+//! NURBS surfaces (eq. 2.3-2.4 of the chapter): evaluation, first and second
 //! partial derivatives by the quotient rule on homogeneous coordinates, unit
 //! normals, knot insertion and affine maps.
 

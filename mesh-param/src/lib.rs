@@ -4,7 +4,7 @@
 //! texture atlas of any oriented manifold mesh ([`atlas()`]: charts packed
 //! into the unit square, one UV per face corner).
 //!
-//! | module | what it holds | seed / paper |
+//! | module | what it holds | chapter / paper |
 //! |---|---|---|
 //! | [`weights`] | one trait, five weight sets: Tutte, mean-value, harmonic, authalic, intrinsic | eq. 2.12-2.16 |
 //! | [`fixed`] | the one fixed-boundary solver for `sum_j w_ij (q_i - q_j) = 0` | eq. 2.13 |

@@ -44,7 +44,7 @@ fn options(method: Method, split: bool) -> AtlasOptions {
 
 #[test]
 fn shared_meshes() {
-    for name in common::DATA {
+    for name in mesh_testkit::data::SHARED_MESHES.map(|m| m.name) {
         let Some(mesh) = common::read(name) else { return };
         for method in [Method::Tutte, Method::Harmonic, Method::Lscm] {
             for split in [false, true] {

@@ -87,10 +87,9 @@ fn unit_gain_is_the_identity_and_band_gains_scale_coefficients() {
 fn low_pass_removes_noise_from_a_sphere() {
     let mut mesh = shapes::icosphere(4).unwrap();
     // Deterministic radial noise of 2% amplitude.
-    let mut s = 12345u64;
+    let mut rng = mesh_testkit::SplitMix64::new(12345);
     for p in mesh.positions_mut() {
-        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        let r = 1.0 + 0.02 * ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5);
+        let r = 1.0 + 0.02 * (rng.unit() - 0.5);
         *p *= r;
     }
     let mh = ManifoldHarmonics::new(&mesh, 49, &options()).unwrap();

@@ -168,13 +168,8 @@ fn bad_arguments_are_typed_errors() {
 /// A grid with jittered interior vertices and a random fold in z.
 fn jittered_grid(nx: usize, ny: usize, seed: u64) -> TriMesh {
     let mut mesh = shapes::grid(1.0, 1.0, nx, ny).unwrap();
-    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut next = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut rng = mesh_testkit::SplitMix64::new(seed);
+    let mut next = || rng.unit() - 0.5;
     let h = 1.0 / nx.max(ny) as f64;
     for p in mesh.positions_mut() {
         let boundary = p.x <= 0.0 || p.y <= 0.0 || p.x >= 1.0 || p.y >= 1.0;

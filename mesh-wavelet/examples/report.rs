@@ -42,8 +42,8 @@ fn bumpy(levels: u32) -> TriMesh {
 
 fn main() {
     let mut shapes: Vec<(&str, TriMesh)> = vec![("sphere", sphere(5)), ("torus", torus(4)), ("bumpy", bumpy(5))];
-    let holes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/cgal_holes.off");
-    if let Ok(data) = mesh_io::read(&holes) {
+    if let Some(holes) = mesh_testkit::shared_file("cgal_holes.off") {
+        let data = mesh_io::read(&holes).unwrap_or_else(|e| panic!("{}: {e}", holes.display()));
         shapes.push(("cgal_holes.off", data.mesh));
     }
     for (name, mesh) in &shapes {

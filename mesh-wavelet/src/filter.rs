@@ -1,5 +1,5 @@
 //! Filter banks as in-place lifting steps: analysis (A, B) and synthesis
-//! (P, Q) between K^{j+1} and K^j (seed eq. 2.38-2.39, figure 2.12).
+//! (P, Q) between K^{j+1} and K^j (the chapter's eq. 2.38-2.39, figure 2.12).
 //!
 //! With the vertices of level j+1 split into the `n_j` even ones (those of
 //! K^j) and the odd ones, one synthesis step is

@@ -1,5 +1,5 @@
 //! The nested meshes K^0 ⊂ K^1 ⊂ ... ⊂ K^J of recursive 4-to-1 splitting
-//! (seed section 2.8, figure 2.13) with the parent/child relations the filter
+//! (the chapter's section 2.8, figure 2.13) with the parent/child relations the filter
 //! banks need.
 //!
 //! Vertices are numbered hierarchically: the `n_j` vertices of K^j are the

@@ -1,11 +1,11 @@
 //! Subdivision and wavelets on triangle meshes: 4-to-1 refinement (midpoint,
 //! Loop, modified butterfly), detection of subdivision connectivity, the
-//! multiresolution analysis of Lounsbery, DeRose and Warren (seed section
-//! 2.8, eq. 2.36-2.39) with lazy and lifted wavelets as fast in-place lifting
+//! multiresolution analysis of Lounsbery, DeRose and Warren (section 2.8,
+//! eq. 2.36-2.39 of the "Digital Shape Processing" thesis chapter) with lazy and lifted wavelets as fast in-place lifting
 //! steps (and as sparse matrices), level of detail, multiresolution editing
 //! and compression.
 //!
-//! | module | what it holds | seed |
+//! | module | what it holds | chapter |
 //! |---|---|---|
 //! | [`subdivide`](mod@subdivide) | [`subdivide()`]: midpoint, Loop (1987), modified butterfly (Zorin et al. 1996) | fig. 2.13 |
 //! | [`hierarchy`] | [`Hierarchy`]: K^0 ⊂ ... ⊂ K^J with hierarchical numbering and parent edges | 2.8 |

@@ -12,7 +12,7 @@ use mesh_kernel::sprs::{CsMat, TriMat};
 use crate::error::{Result, WaveletError};
 use crate::filter::{FilterBank, LevelFilter};
 
-/// The four matrices of one level of a filter bank (seed figure 2.12).
+/// The four matrices of one level of a filter bank (the chapter's figure 2.12).
 #[derive(Debug, Clone)]
 pub struct FilterMatrices {
     /// Synthesis, coarse part: `n_{j+1} x n_j`, the subdivision matrix.

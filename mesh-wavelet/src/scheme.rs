@@ -5,7 +5,7 @@ use std::str::FromStr;
 
 use crate::error::WaveletError;
 
-/// A refinement rule for 4-to-1 splitting K^j -> K^{j+1} (seed figure 2.13).
+/// A refinement rule for 4-to-1 splitting K^j -> K^{j+1} (the chapter's figure 2.13).
 ///
 /// Every scheme inserts one vertex per edge and splits each triangle into
 /// four; they differ in where vertices go. As the predictor of a filter bank
@@ -14,7 +14,7 @@ use crate::error::WaveletError;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Scheme {
     /// Midpoint (linear) splitting: new vertices at edge midpoints, old ones
-    /// fixed. Its scaling functions are the hat functions of the seed, so the
+    /// fixed. Its scaling functions are the hat functions of the chapter, so the
     /// filter bank is the piecewise-linear wavelet construction of Lounsbery,
     /// DeRose and Warren (1997) (eq. 2.36-2.39).
     #[default]

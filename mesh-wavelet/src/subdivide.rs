@@ -1,4 +1,4 @@
-//! Subdivision surfaces by recursive 4-to-1 splitting (seed figure 2.13):
+//! Subdivision surfaces by recursive 4-to-1 splitting (the chapter's figure 2.13):
 //! midpoint, Loop and modified butterfly.
 
 use mesh_kernel::{shapes, MeshError, TriMesh};

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{base_meshes, real_mesh, Rng};
+use common::{base_meshes, real_mesh, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
 use mesh_wavelet::{rules::loop_beta, subdivide, Scheme, WaveletError};
 use proptest::prelude::*;
@@ -203,7 +203,7 @@ proptest! {
     #[test]
     fn subdivision_commutes_with_affine_maps(seed in any::<u64>(), which in 0usize..8) {
         let (_, base) = base_meshes().swap_remove(which);
-        let mut rng = Rng(seed);
+        let mut rng = SplitMix64::new(seed);
         let cols: Vec<DVec3> = (0..4).map(|_| DVec3::new(rng.signed(), rng.signed(), rng.signed())).collect();
         let map = |p: DVec3| cols[0] * p.x + cols[1] * p.y + cols[2] * p.z + cols[3];
         let moved = TriMesh::new(base.positions().iter().map(|&p| map(p)).collect(), base.faces().to_vec()).unwrap();

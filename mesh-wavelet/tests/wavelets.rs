@@ -7,7 +7,7 @@ mod common;
 
 use std::sync::Arc;
 
-use common::{bumpy_sphere, real_mesh, relative_max_distance, shuffled, smooth_torus, Rng};
+use common::{bumpy_sphere, real_mesh, relative_max_distance, shuffled, smooth_torus, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, sprs::CsMat, MeshError, TriMesh};
 use mesh_wavelet::{
     decay_rate, inner_product_matrix, subdivide, CompressOptions, FilterBank, Hierarchy, Multiresolution, Options,
@@ -105,7 +105,7 @@ fn sparse_matrices_are_biorthogonal_and_match_the_lifting() {
                     let pa_qb = &(&m.p * &m.a) + &(&m.q * &m.b);
                     assert!(max_abs_diff_from(&pa_qb, true) < 1e-13);
                     // The in-place analysis step computes [A x; B x].
-                    let mut rng = Rng(j as u64 + 17);
+                    let mut rng = SplitMix64::new(j as u64 + 17);
                     let x: Vec<f64> = (0..n).map(|_| rng.signed()).collect();
                     let mut y = x.clone();
                     bank.level(j).unwrap().analyze(&mut y).unwrap();
@@ -433,7 +433,7 @@ proptest! {
         let base = shapes::disk(2, 3).unwrap();
         let h = Hierarchy::from_base(base.vertex_count(), base.faces(), 3).unwrap();
         let bank = FilterBank::new(&h, scheme, wavelet).unwrap();
-        let mut rng = Rng(seed);
+        let mut rng = SplitMix64::new(seed);
         let n = bank.len();
         let x: Vec<DVec3> = (0..n).map(|_| DVec3::new(rng.signed(), rng.signed(), rng.signed()) * 10.0).collect();
         let mut y = x.clone();

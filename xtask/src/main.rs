@@ -8,14 +8,19 @@
 //!   threads, under stable names shared with `../shared/peers/peer_bench.py`.
 //! - `cargo xtask render [--out DIR]`: a gallery of PNG pictures made with
 //!   `mesh render`.
-//! - `cargo xtask publish-check`: packages every publishable crate.
+//! - `cargo xtask publish-check [--names-only]`: every package name free on crates.io
+//!   or ours, then `cargo publish --workspace --dry-run`.
 //! - `cargo xtask fuzz [--iterations N] [--format F] [--seed S]`: structure-aware
 //!   fuzzing of every mesh-io reader, in-process (see RELIABILITY.md).
+//! - `cargo xtask tidy`: the repository's rules (used dependencies, true
+//!   `rust-version`, `unsafe` allow-list, `# Errors` docs, no machine names);
+//!   also a test of this crate.
 
 mod bench;
 mod fuzz;
 mod publish_check;
 mod render;
+mod tidy;
 mod validate;
 
 use clap::{Parser, Subcommand};
@@ -39,21 +44,28 @@ enum Command {
     Bench(bench::Args),
     /// Render a gallery of PNG pictures.
     Render(render::Args),
-    /// Package every publishable crate in dependency order.
+    /// Check names on crates.io and dry-run `cargo publish --workspace`.
     PublishCheck(publish_check::Args),
     /// Fuzz every mesh reader with mutated files.
     Fuzz(fuzz::Args),
+    /// Check the repository's rules (dependencies, rust-version, unsafe, docs).
+    Tidy(tidy::Args),
 }
 
 fn main() {
     let cli = Cli::parse();
-    let result = match &cli.command {
+    // The commands that use the shared meshes skip them when absent, unless
+    // MESH_REQUIRE_SHARED_DATA=1 (continuous integration) makes that a failure.
+    let uses_data = matches!(cli.command, Command::Validate(_) | Command::Render(_) | Command::Fuzz(_));
+    let required = if uses_data { mesh_testkit::data::require().map_err(Into::into) } else { Ok(()) };
+    let result = required.and_then(|()| match &cli.command {
         Command::Validate(args) => validate::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Render(args) => render::run(args),
         Command::PublishCheck(args) => publish_check::run(args),
         Command::Fuzz(args) => fuzz::run(args),
-    };
+        Command::Tidy(args) => tidy::run(args),
+    });
     if let Err(e) = result {
         eprintln!("xtask: {e}");
         std::process::exit(1);

@@ -1,33 +1,126 @@
-//! `cargo xtask publish-check`: packages every publishable crate of the
-//! workspace with `cargo package`, which resolves unpublished path
-//! dependencies through a local overlay of the packaged crates, in
-//! dependency order.
+//! `cargo xtask publish-check`: whether the workspace can go to crates.io.
+//!
+//! 1. Every publishable package name is looked up with `cargo info NAME`
+//!    (from a folder outside the workspace, so the registry answers): a
+//!    name that is absent is free; a name that is present must carry this
+//!    workspace's repository URL, else it belongs to someone else and a
+//!    published dependent would resolve the wrong crate.
+//! 2. `cargo publish --workspace --dry-run` packages every publishable crate
+//!    and builds each one from its archive, in dependency order, against
+//!    the registry and the archives before it. It needs a clean work tree
+//!    (no `--allow-dirty`), as continuous integration has.
 
+use std::path::Path;
 use std::process::Command;
 
+use crate::tidy::deps::{metadata, Package};
 use crate::Result;
 
 /// Arguments of `cargo xtask publish-check`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Also build each packaged crate from its archive (slow).
+    /// Only check the names against the registry (no packaging).
     #[arg(long)]
-    verify: bool,
+    names_only: bool,
 }
 
-/// Runs `cargo package --workspace`, leaving out xtask (`publish = false`,
-/// which `cargo package` does not skip by itself).
+/// Runs both steps; fails at the first that fails.
+///
+/// # Errors
+/// A name owned by another repository, a failed lookup, or a failed dry run.
 pub fn run(args: &Args) -> Result<()> {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let mut cmd = Command::new(cargo);
-    cmd.args(["package", "--workspace", "--exclude", "xtask", "--allow-dirty"]);
-    if !args.verify {
-        cmd.arg("--no-verify");
+    let root = crate::tidy::workspace_root();
+    let meta = metadata(&root)?;
+    let ours: Vec<&Package> = meta.members.iter().filter(|p| p.publish).collect();
+    let mut taken = Vec::new();
+    for p in &ours {
+        let owner = registry_repository(&p.name)?;
+        let verdict = name_verdict(owner.as_deref(), p.repository.as_deref());
+        println!("publish-check: {:16} {verdict}", p.name);
+        if let Verdict::Taken(_) = verdict {
+            taken.push(p.name.clone());
+        }
     }
-    let status = cmd.status()?;
+    if !taken.is_empty() {
+        return Err(format!("names taken on crates.io by other projects: {}", taken.join(", ")).into());
+    }
+    if args.names_only {
+        return Ok(());
+    }
+    let status = cargo(&root).args(["publish", "--workspace", "--dry-run", "--locked"]).status()?;
     if !status.success() {
-        return Err(format!("cargo package failed ({status})").into());
+        return Err(format!("cargo publish --workspace --dry-run failed ({status})").into());
     }
-    println!("publish-check: every publishable crate packages");
+    println!("publish-check: every publishable crate packages and builds from its archive");
     Ok(())
+}
+
+fn cargo(dir: &Path) -> Command {
+    let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    cmd.current_dir(dir);
+    cmd
+}
+
+/// The repository URL crates.io gives for `name`, `None` when no crate has
+/// that name. Runs outside the workspace, where `cargo info` asks the registry.
+fn registry_repository(name: &str) -> Result<Option<String>> {
+    let out = cargo(&std::env::temp_dir()).args(["info", name, "--registry", "crates-io"]).output()?;
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    if out.status.success() && !stdout.trim().is_empty() {
+        let repo = stdout.lines().find_map(|l| l.strip_prefix("repository:")).map(|r| r.trim().to_owned());
+        return Ok(Some(repo.unwrap_or_default()));
+    }
+    if stderr.contains("could not find") {
+        return Ok(None);
+    }
+    Err(format!("cargo info {name} failed: {}", stderr.trim()).into())
+}
+
+/// What a registry lookup means for one of our names.
+#[derive(Debug, PartialEq, Eq)]
+enum Verdict {
+    /// No crate has the name.
+    Free,
+    /// A crate has it, published from our repository.
+    Ours,
+    /// A crate has it, from another repository (given).
+    Taken(String),
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Verdict::Free => write!(f, "free on crates.io"),
+            Verdict::Ours => write!(f, "on crates.io, from this repository"),
+            Verdict::Taken(repo) => {
+                write!(f, "TAKEN on crates.io by {}", if repo.is_empty() { "(no repository)" } else { repo })
+            }
+        }
+    }
+}
+
+/// Compares the registry's repository (if the name exists) with ours,
+/// ignoring a trailing `/` or `.git`.
+fn name_verdict(registry: Option<&str>, ours: Option<&str>) -> Verdict {
+    let norm = |u: &str| u.trim().trim_end_matches('/').trim_end_matches(".git").to_ascii_lowercase();
+    match (registry, ours) {
+        (None, _) => Verdict::Free,
+        (Some(theirs), Some(ours)) if !theirs.is_empty() && norm(theirs) == norm(ours) => Verdict::Ours,
+        (Some(theirs), _) => Verdict::Taken(theirs.to_owned()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_judged_by_repository() {
+        let ours = Some("https://github.com/mesh-workspace/mesh");
+        assert_eq!(name_verdict(None, ours), Verdict::Free);
+        assert_eq!(name_verdict(Some("https://github.com/mesh-workspace/mesh.git"), ours), Verdict::Ours);
+        let other = "https://github.com/mellowmarshall/mars-protocol";
+        assert_eq!(name_verdict(Some(other), ours), Verdict::Taken(other.into()));
+        assert_eq!(name_verdict(Some(""), ours), Verdict::Taken(String::new()));
+    }
 }

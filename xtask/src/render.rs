@@ -44,7 +44,7 @@ pub fn run(args: &Args) -> Result<()> {
             mesh(&["render", path_str(&dir.join(file))?, "--up", up, "--out", path_str(&png)?])?;
         }
     } else {
-        eprintln!("render: ../shared/data is absent, shared meshes skipped");
+        eprintln!("render: shared meshes skipped: {}", crate::validate::no_shared_data());
     }
     println!("render: pictures in {}", args.out.display());
     Ok(())

@@ -453,7 +453,7 @@ mod tests {
 
     #[test]
     fn shared_meshes_give_finite_fields() {
-        let Some(dir) = crate::commands::shared_data() else { return };
+        let Some(dir) = mesh_testkit::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
         for file in ["cgal_degtri_sliding.off", "cgal_holes.off", "npm_bunny.obj", "npm_dragon_res3.ply"] {
             let out = tmp.path().join(format!("{file}.ply"));

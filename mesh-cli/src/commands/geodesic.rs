@@ -1,7 +1,7 @@
-//! `mesh geodesic`: geodesic distance from source vertices (seed section
-//! 2.6) by the heat method, Fast Marching (eq. 2.32-2.34), Dijkstra on the
-//! edges or exact polyhedral geodesics (window propagation), written as
-//! binary PLY with a per-vertex double `distance` (+infinity where no source
+//! `mesh geodesic`: geodesic distance from source vertices (section 2.6
+//! of the "Digital Shape Processing" thesis chapter) by the heat method,
+//! Fast Marching (eq. 2.32-2.34), Dijkstra on the edges or exact polyhedral
+//! geodesics (window propagation), written as binary PLY with a per-vertex double `distance` (+infinity where no source
 //! is reachable), and optionally the path from a vertex back to the sources
 //! along -grad U (eq. 2.35) as an OBJ polyline. For the heat method the PLY
 //! also flags, per vertex, where the heat flow was below what double
@@ -441,7 +441,7 @@ mod tests {
 
     #[test]
     fn shared_meshes_give_finite_distances() {
-        let Some(dir) = crate::commands::shared_data() else { return };
+        let Some(dir) = mesh_testkit::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
         for file in ["cgal_degtri_sliding.off", "cgal_holes.off", "npm_bunny.obj"] {
             let out = tmp.path().join(format!("{file}.ply"));

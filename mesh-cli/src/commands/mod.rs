@@ -24,15 +24,3 @@ pub(crate) fn parse_args<A: clap::Args>(name: &str, extra: &[&str]) -> A {
     }
     Cli::<A>::parse_from(std::iter::once(name).chain(extra.iter().copied())).args
 }
-
-/// `../shared/data` (real test meshes), or `None` with a message when it
-/// is absent (tests).
-#[cfg(test)]
-pub(crate) fn shared_data() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    if !dir.is_dir() {
-        eprintln!("skipping: {} is absent", dir.display());
-        return None;
-    }
-    Some(dir)
-}

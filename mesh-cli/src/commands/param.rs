@@ -661,7 +661,7 @@ mod tests {
 
     #[test]
     fn shared_meshes_get_atlases() {
-        let Some(dir) = crate::commands::shared_data() else { return };
+        let Some(dir) = mesh_testkit::shared_data() else { return };
         let tmp = tempfile::tempdir().unwrap();
         let mut files: Vec<_> = std::fs::read_dir(&dir)
             .unwrap()

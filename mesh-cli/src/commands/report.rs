@@ -219,7 +219,7 @@ fn input_warnings(report: &mut Report, mesh: &TriMesh, info: &Info, read: &mesh_
     }
 }
 
-/// Laplacian sanity figures and feature edges (seed 2.2.2).
+/// Laplacian sanity figures and feature edges (chapter section 2.2.2).
 fn operators_section(report: &mut Report, mesh: &TriMesh, feature_angle: f64) -> CliResult<Value> {
     let laplacian = report.time("cotan_laplacian", || operators::cotan_laplacian(mesh));
     let negative = laplacian.iter().filter(|(v, (i, j))| i != j && **v > 0.0).count() / 2;

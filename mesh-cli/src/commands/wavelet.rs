@@ -1,7 +1,8 @@
 //! `mesh subdivide` and `mesh wavelet`: 4-to-1 subdivision (midpoint, Loop,
-//! modified butterfly) and the multiresolution analysis of seed section 2.8
-//! (eq. 2.36-2.39) with mesh-wavelet: coefficient statistics, compression by
-//! keeping the largest coefficients, and levels of detail.
+//! modified butterfly) and the multiresolution analysis of section 2.8
+//! (eq. 2.36-2.39) of the "Digital Shape Processing" thesis chapter, with
+//! mesh-wavelet: coefficient statistics, compression by keeping the largest
+//! coefficients, and levels of detail.
 //!
 //! Outputs keep the input's vertex order wherever the vertex set is the
 //! same: subdivision lists the old vertices first, a level of detail lists

@@ -1,10 +1,8 @@
 //! Shared helpers of the integration tests: analytic surfaces with their
-//! exact curvature per vertex, a minimal reader for the OFF/OBJ files of
-//! `../shared/data`, and error measures.
+//! exact curvature per vertex, the shared real meshes, and error measures.
 #![allow(dead_code)]
 
 use std::f64::consts::TAU;
-use std::path::{Path, PathBuf};
 
 use mesh_curvature::CurvatureTensor;
 use mesh_kernel::glam::DVec3;
@@ -90,11 +88,8 @@ pub fn ellipsoid(level: u32, [a, b, c]: [f64; 3]) -> (TriMesh, Truth) {
 pub fn jittered_sphere(level: u32, amount: f64, seed: u64) -> (TriMesh, Truth) {
     let (m, t) = sphere(level);
     let h = 1.1 / 2f64.powi(level as i32);
-    let mut state = seed;
-    let mut rnd = || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut rng = mesh_testkit::SplitMix64::new(seed);
+    let mut rnd = || rng.signed();
     let p = m.positions().iter().map(|p| (*p + amount * h * DVec3::new(rnd(), rnd(), rnd())).normalize()).collect();
     (TriMesh::new(p, m.faces().to_vec()).unwrap(), t)
 }
@@ -156,80 +151,11 @@ pub fn order(coarse: f64, fine: f64, ratio: f64) -> f64 {
     (coarse / fine).ln() / ratio.ln()
 }
 
-/// `../shared/data` next to the workspace, when present.
-pub fn data_dir() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        println!("skipped: {} is absent", dir.display());
-        None
-    }
-}
-
-/// Every mesh of `../shared/data` (name, mesh), read with [`read_mesh`].
+/// Every shared mesh by file name, read with the test kit's minimal reader
+/// (so the tests do not depend on another crate); empty when the data is
+/// absent (see `mesh_testkit::data`).
 pub fn data_meshes() -> Vec<(String, TriMesh)> {
-    let Some(dir) = data_dir() else { return Vec::new() };
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("off" | "obj")))
-        .collect();
-    names.sort();
-    names
-        .into_iter()
-        .map(|p| {
-            let mesh = read_mesh(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            (p.file_name().unwrap().to_string_lossy().into_owned(), mesh)
-        })
-        .collect()
-}
-
-/// A minimal reader for the OFF and OBJ files of the test data (triangles
-/// only, polygons fanned), so the tests do not depend on another crate.
-pub fn read_mesh(path: &Path) -> Result<TriMesh, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
-    let mut positions = Vec::new();
-    let mut faces = Vec::new();
-    let fan = |poly: &[u32], faces: &mut Vec<[u32; 3]>| {
-        for k in 1..poly.len().saturating_sub(1) {
-            faces.push([poly[0], poly[k], poly[k + 1]]);
-        }
-    };
-    if path.extension().and_then(|e| e.to_str()) == Some("obj") {
-        for line in text.lines() {
-            let mut it = line.split_whitespace();
-            match it.next() {
-                Some("v") => {
-                    let c: Vec<f64> = it.take(3).map(|x| x.parse().unwrap()).collect();
-                    positions.push(DVec3::new(c[0], c[1], c[2]));
-                }
-                Some("f") => {
-                    let poly: Vec<u32> = it.map(|x| x.split('/').next().unwrap().parse::<u32>().unwrap() - 1).collect();
-                    fan(&poly, &mut faces);
-                }
-                _ => {}
-            }
-        }
-    } else {
-        let mut tokens = text
-            .lines()
-            .map(|l| l.split('#').next().unwrap_or(""))
-            .flat_map(|l| l.split_whitespace())
-            .skip_while(|t| t.starts_with("OFF"));
-        let mut next = || tokens.next().ok_or("truncated OFF").map(|s| s.to_string());
-        let nv: usize = next()?.parse().map_err(|_| "bad count")?;
-        let nf: usize = next()?.parse().map_err(|_| "bad count")?;
-        let _ne = next()?;
-        for _ in 0..nv {
-            let c: Vec<f64> = (0..3).map(|_| next().unwrap().parse().unwrap()).collect();
-            positions.push(DVec3::new(c[0], c[1], c[2]));
-        }
-        for _ in 0..nf {
-            let k: usize = next()?.parse().map_err(|_| "bad polygon")?;
-            let poly: Vec<u32> = (0..k).map(|_| next().unwrap().parse().unwrap()).collect();
-            fan(&poly, &mut faces);
-        }
-    }
-    TriMesh::new(positions, faces).map_err(|e| e.to_string())
+    let tri =
+        |raw: mesh_testkit::RawMesh| TriMesh::new(raw.positions.into_iter().map(DVec3::from).collect(), raw.faces);
+    mesh_testkit::shared_meshes().into_iter().map(|(name, raw)| (name.to_string(), tri(raw).unwrap())).collect()
 }

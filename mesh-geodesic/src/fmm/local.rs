@@ -12,7 +12,7 @@ const DEGENERATE: f64 = 1e-12;
 /// Q = G^-1 the inverse Gram matrix, a = (1, 1) and b = -(u1, u2), the
 /// value U = U(x) solves (a^T Q a) U^2 + 2 (a^T Q b) U + b^T Q b = P^2
 /// (the cross term's sign as it follows from nu = U a + b of eq. 2.33; the
-/// seed prints it with a minus). The larger root is kept when it is causal:
+/// chapter prints it with a minus). The larger root is kept when it is causal:
 /// the upwind direction -grad U = c1 e1 + c2 e2, c = Q nu, points into the
 /// triangle (c1, c2 >= 0) and U >= max(u1, u2). Computed relative to
 /// min(u1, u2) to avoid cancellation. O(1).

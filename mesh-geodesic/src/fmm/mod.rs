@@ -11,7 +11,7 @@
 //! the corner, and the update uses the two virtual acute triangles it forms.
 //!
 //! Three local solvers ([`FmmUpdate`]):
-//! - [`FmmUpdate::PlaneWave`]: eq. 2.34 as in the seed, the front taken
+//! - [`FmmUpdate::PlaneWave`]: eq. 2.34 as in the chapter, the front taken
 //!   straight across each triangle. First order; its error concentrates near
 //!   point sources, where the front is strongly curved.
 //! - [`FmmUpdate::PointSource`]: the front taken as a circle about a virtual

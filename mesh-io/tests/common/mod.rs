@@ -78,14 +78,3 @@ pub fn triangle_soup(mesh: &TriMesh) -> Vec<[[u64; 3]; 3]> {
     soup.sort_unstable();
     soup
 }
-
-/// `../../shared/data` from this crate, when present.
-pub fn shared_data() -> Option<std::path::PathBuf> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipped: {} is absent", dir.display());
-        None
-    }
-}

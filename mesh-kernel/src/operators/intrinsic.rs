@@ -3,7 +3,7 @@
 //! 2007), with intrinsic mollification (Sharp and Crane 2020) so that
 //! zero-area triangles get well-defined, finite cotangents.
 //!
-//! The seed (2.2.2) warns that obtuse triangles make cotangent weights
+//! The chapter (section 2.2.2) warns that obtuse triangles make cotangent weights
 //! negative and linear systems unstable; the cotangent Laplacian of the
 //! intrinsic Delaunay triangulation has only non-negative weights, satisfies
 //! a maximum principle, and equals the ordinary one on a mesh that is

@@ -91,7 +91,7 @@ pub fn halfedge_cotans(mesh: &TriMesh) -> Vec<f64> {
 /// Cotangent weight of every edge, w_ij = (cot alpha_ij + cot beta_ij) / 2
 /// (eq. 2.15 up to the factor 1/2 that makes it the FEM stiffness), summed
 /// over however many faces the edge has (one on the boundary). Negative for
-/// edges opposite obtuse angles (seed 2.2.2). O(F).
+/// edges opposite obtuse angles (chapter section 2.2.2). O(F).
 pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
     let cot = halfedge_cotans(mesh);

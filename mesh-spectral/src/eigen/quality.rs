@@ -35,6 +35,11 @@ pub(crate) struct Stiffness {
 }
 
 impl Stiffness {
+    /// `L` and `|L|` converted to faer. O(nnz).
+    ///
+    /// # Errors
+    /// `MeshError::Solver` (through the crate error) when faer cannot hold
+    /// the matrix.
     pub fn new(l: &sprs::CsMat<f64>) -> Result<Self> {
         let abs = l.map(|v| v.abs());
         Ok(Self { l: mesh_kernel::solver::to_faer(l)?, abs: mesh_kernel::solver::to_faer(&abs)? })

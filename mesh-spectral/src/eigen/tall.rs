@@ -3,7 +3,7 @@
 //!
 //! faer parallelizes a product over its (small) output, which for
 //! `V^T W` with `V` n x 400 and `W` n x 8 leaves the threads fighting over
-//! a 400 x 8 result; measured on this machine class it ran 5-8 times slower
+//! a 400 x 8 result; measured on a 2-core x86-64 VM it ran 5-8 times slower
 //! than one thread. Splitting the long dimension instead gives each thread a
 //! contiguous slab of rows and a sequential faer kernel; partial Gram
 //! matrices are summed at the end.

@@ -1,8 +1,6 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
-
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::TriMesh;
 use mesh_spectral::Eigenpairs;
@@ -45,14 +43,9 @@ pub fn clusters(values: &[f64], rel: f64) -> Vec<usize> {
     out
 }
 
-/// The shared real meshes, or `None` (with a message) when absent.
+/// A shared real mesh, `None` when the data is absent (see `mesh_testkit::data`).
 pub fn data_mesh(name: &str) -> Option<TriMesh> {
-    let dir: PathBuf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    let path = dir.join(name);
-    if !path.exists() {
-        eprintln!("skipping: {} not found", path.display());
-        return None;
-    }
+    let path = mesh_testkit::shared_file(name)?;
     Some(mesh_io::read(&path).expect("shared test mesh reads").mesh)
 }
 

@@ -1,63 +1,22 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use std::path::PathBuf;
-
 use mesh_kernel::{glam::DVec3, shapes, TriMesh};
 use mesh_wavelet::{subdivide, Scheme};
 
-/// The shared real meshes, or `None` (with a message) when absent.
-pub fn data_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("skipping: {} not found", dir.display());
-        None
-    }
-}
+pub use mesh_testkit::SplitMix64;
 
-/// Reads a shared mesh by file name, `None` when the data folder is absent.
+/// Reads a shared mesh by file name, `None` when the data folder is absent
+/// (see `mesh_testkit::data`).
 pub fn real_mesh(name: &str) -> Option<TriMesh> {
-    let dir = data_dir()?;
-    Some(mesh_io::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}")).mesh)
-}
-
-/// A tiny deterministic generator (SplitMix64).
-pub struct Rng(pub u64);
-
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, n).
-    pub fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-
-    /// Uniform in [-1, 1).
-    pub fn signed(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-
-    pub fn permutation(&mut self, n: usize) -> Vec<u32> {
-        let mut p: Vec<u32> = (0..n as u32).collect();
-        for i in (1..n).rev() {
-            p.swap(i, self.below(i + 1));
-        }
-        p
-    }
+    let path = mesh_testkit::shared_file(name)?;
+    Some(mesh_io::read(&path).unwrap_or_else(|e| panic!("{name}: {e}")).mesh)
 }
 
 /// `mesh` with vertices renumbered by a random permutation, faces shuffled
 /// and their corners rotated. Returns the mesh and `new_index[old]`.
 pub fn shuffled(mesh: &TriMesh, seed: u64) -> (TriMesh, Vec<u32>) {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let n = mesh.vertex_count();
     let new_index = rng.permutation(n);
     let mut positions = vec![DVec3::ZERO; n];

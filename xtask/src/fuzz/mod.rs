@@ -29,7 +29,6 @@ use mesh_io::Format;
 
 use crate::validate::Validator;
 use crate::Result;
-use rng::Rng;
 
 /// An input running longer than this is a hang: the run stops.
 pub const HANG_SECONDS: f64 = 20.0;
@@ -144,7 +143,7 @@ fn watchdog(current: Arc<Mutex<Current>>) {
 /// mutations applied.
 fn input(format: Format, all: &[seeds::Seed], seed: u64, iteration: u64) -> (Vec<u8>, String) {
     let index = Format::ALL.iter().position(|f| *f == format).unwrap_or(0) as u64;
-    let mut rng = Rng::for_input(index, seed, iteration);
+    let mut rng = rng::for_input(index, seed, iteration);
     let base = rng.pick(all);
     let other = rng.pick(all);
     let (bytes, applied) = mutate::mutate(&mut rng, &base.bytes, &other.bytes);

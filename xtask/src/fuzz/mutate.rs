@@ -1,5 +1,5 @@
 //! Structure-aware mutations of mesh files. Each input is a seed with one to
-//! four mutations stacked, every choice drawn from an [`Rng`] seeded by
+//! four mutations stacked, every choice drawn from a [`SplitMix64`] seeded by
 //! (format, seed, iteration), so an input is rebuilt exactly from those three
 //! numbers. Mutations know what mesh files are made of: numbers (counts,
 //! indices, coordinates, byte lengths), lines, tokens, quoted JSON strings,
@@ -7,7 +7,7 @@
 //! to 0, -1, huge or off by one, NaN and infinite coordinates, long lines,
 //! invalid UTF-8, truncation, duplicated and missing lines.
 
-use super::rng::Rng;
+use mesh_testkit::SplitMix64;
 
 /// Largest mutated input, in bytes (long-line mutations are capped to it).
 pub const MAX_SIZE: usize = 4 << 20;
@@ -35,7 +35,7 @@ pub const KINDS: &[&str] = &[
 ];
 
 /// One mutated input: the seed's bytes with 1-4 mutations, and their names.
-pub fn mutate(rng: &mut Rng, seed: &[u8], other: &[u8]) -> (Vec<u8>, Vec<&'static str>) {
+pub fn mutate(rng: &mut SplitMix64, seed: &[u8], other: &[u8]) -> (Vec<u8>, Vec<&'static str>) {
     let mut data = seed.to_vec();
     let mut applied = Vec::new();
     let count = 1 + usize::from(rng.one_in(2)) + usize::from(rng.one_in(4)) + usize::from(rng.one_in(8));
@@ -94,7 +94,7 @@ const STRINGS: &[&str] = &[
     "\"_quality\"",
 ];
 
-fn mutate_once(rng: &mut Rng, kind: usize, data: &mut Vec<u8>, other: &[u8]) {
+fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u8]) {
     let len = data.len();
     match kind {
         0 => {
@@ -186,7 +186,7 @@ fn mutate_once(rng: &mut Rng, kind: usize, data: &mut Vec<u8>, other: &[u8]) {
 
 /// A replacement for a number token: an extreme integer, an off-by-one
 /// neighbour of the value, or a non-finite / extreme float.
-fn number_replacement(rng: &mut Rng, old: &[u8]) -> String {
+fn number_replacement(rng: &mut SplitMix64, old: &[u8]) -> String {
     let text = String::from_utf8_lossy(old);
     match rng.below(4) {
         0 | 1 => (*rng.pick(INTEGERS)).to_owned(),
@@ -200,7 +200,7 @@ fn number_replacement(rng: &mut Rng, old: &[u8]) -> String {
 
 /// A 32-bit field overwritten at a random (often 4-aligned, often early)
 /// offset: an extreme count in either byte order, or a NaN / infinite float.
-fn binary_field(rng: &mut Rng, data: &mut [u8], float: bool) {
+fn binary_field(rng: &mut SplitMix64, data: &mut [u8], float: bool) {
     if data.len() < 4 {
         return;
     }
@@ -273,7 +273,7 @@ fn line_starts(data: &[u8]) -> Vec<usize> {
     std::iter::once(0).chain(data.iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(i, _)| i + 1)).collect()
 }
 
-fn line_start(rng: &mut Rng, data: &[u8]) -> usize {
+fn line_start(rng: &mut SplitMix64, data: &[u8]) -> usize {
     *rng.pick(&line_starts(data))
 }
 
@@ -284,7 +284,7 @@ fn line_at(data: &[u8], start: usize) -> (usize, usize) {
 }
 
 /// Duplicates (up to 100 times), removes or swaps whole lines.
-fn lines(rng: &mut Rng, kind: usize, data: &mut Vec<u8>) {
+fn lines(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>) {
     let starts = line_starts(data);
     let (a, b) = line_at(data, *rng.pick(&starts));
     match kind {
@@ -314,7 +314,7 @@ fn lines(rng: &mut Rng, kind: usize, data: &mut Vec<u8>) {
 }
 
 /// Swaps two whitespace-separated tokens of one line.
-fn swap_tokens(rng: &mut Rng, data: &mut Vec<u8>) {
+fn swap_tokens(rng: &mut SplitMix64, data: &mut Vec<u8>) {
     let starts = line_starts(data);
     let (a, b) = line_at(data, *rng.pick(&starts));
     let line = &data[a..b];
@@ -364,8 +364,8 @@ mod tests {
     fn reproducible() {
         let seed = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
         for i in 0..200 {
-            let a = mutate(&mut Rng::for_input(0, 0, i), seed, seed);
-            let b = mutate(&mut Rng::for_input(0, 0, i), seed, seed);
+            let a = mutate(&mut super::super::rng::for_input(0, 0, i), seed, seed);
+            let b = mutate(&mut super::super::rng::for_input(0, 0, i), seed, seed);
             assert_eq!(a, b);
             assert!(a.0.len() <= MAX_SIZE);
         }

@@ -6,7 +6,7 @@ use std::f64::consts::{PI, TAU};
 use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation};
 use mesh_kernel::{geometry, shapes, TriMesh, VertexKind};
 
-use super::{convergence_order, shared_data, Validator};
+use super::{convergence_order, no_shared_data, shared_data, Validator};
 
 /// Runs the mesh-kernel checks.
 pub fn run(v: &mut Validator) {
@@ -47,22 +47,14 @@ fn shape_topology(v: &mut Validator) {
     }
 }
 
-/// The counts of ../shared/data/README.md.
+/// The counts of the shared meshes' README (`mesh_testkit::data::SHARED_MESHES`).
 fn shared_meshes(v: &mut Validator) {
     let Some(dir) = shared_data() else {
-        v.skip("shared meshes", "../shared/data is absent");
+        v.skip("shared meshes", no_shared_data());
         return;
     };
-    let table: [(&str, usize, usize, i64, u64, usize); 7] = [
-        ("cgal_nefertiti.off", 299, 562, 1, 0, 1),
-        ("cgal_mushroom.off", 2337, 4608, 1, 0, 1),
-        ("cgal_elephant.off", 2775, 5558, -4, 3, 0),
-        ("cgal_fandisk.off", 6475, 12946, 2, 0, 0),
-        ("npm_bunny.obj", 1839, 3674, 2, 0, 0),
-        ("cgal_holes.off", 4291, 8288, -5, 0, 7),
-        ("cgal_degtri_sliding.off", 8, 8, 1, 0, 1),
-    ];
-    for (file, nv, nf, chi, genus, loops) in table {
+    for m in mesh_testkit::data::SHARED_MESHES {
+        let (file, nv, nf, chi, genus, loops) = (m.name, m.vertices, m.faces, m.euler, m.genus, m.boundary_loops);
         match mesh_io::read(dir.join(file)) {
             Ok(data) => {
                 let (m, c) = (&data.mesh, data.mesh.connectivity());

@@ -13,7 +13,7 @@ use mesh_curvature::{
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
 
-use super::{convergence_order, shared_data, Validator};
+use super::{convergence_order, no_shared_data, shared_data, Validator};
 
 /// Runs the mesh-curvature checks.
 pub fn run(v: &mut Validator) {
@@ -249,7 +249,7 @@ fn gauss_bonnet(v: &mut Validator) {
 
 fn read_shared(v: &mut Validator) -> Vec<(String, TriMesh)> {
     let Some(dir) = shared_data() else {
-        v.skip("curvature on shared meshes", "../shared/data is absent");
+        v.skip("curvature on shared meshes", no_shared_data());
         return Vec::new();
     };
     let mut out = Vec::new();

@@ -12,7 +12,7 @@ use mesh_geodesic::{
 };
 use mesh_kernel::{shapes, TriMesh, VertexId};
 
-use super::{convergence_order, shared_data, Validator};
+use super::{convergence_order, no_shared_data, shared_data, Validator};
 
 /// Runs the mesh-geodesic checks.
 pub fn run(v: &mut Validator) {
@@ -293,7 +293,7 @@ fn exact_geodesics(v: &mut Validator) {
 /// zero-area triangles (libigl returns NaN there).
 fn shared_meshes(v: &mut Validator) {
     let Some(dir) = shared_data() else {
-        v.skip("geodesics on shared meshes", "../shared/data is absent");
+        v.skip("geodesics on shared meshes", no_shared_data());
         return;
     };
     let mut files: Vec<_> =

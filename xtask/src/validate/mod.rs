@@ -15,7 +15,7 @@ mod spectral;
 mod units;
 mod wavelet;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Serialize;
 
@@ -192,10 +192,15 @@ impl Validator {
     }
 }
 
-/// The folder of third-party test meshes, if present.
+/// The folder of third-party test meshes, if present (looked up as
+/// `mesh_testkit::data` says; a run that requires it fails before any group).
 pub fn shared_data() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    dir.is_dir().then_some(dir)
+    mesh_testkit::data::locate().ok()
+}
+
+/// The reason a check on the shared meshes is skipped.
+pub fn no_shared_data() -> String {
+    mesh_testkit::data::absent_reason(&mesh_testkit::data::data_path())
 }
 
 /// Observed convergence order from errors at successive refinements where

@@ -11,7 +11,7 @@ use mesh_kernel::glam::{DVec2, DVec3};
 use mesh_kernel::{shapes, TriMesh};
 use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options, ParamError};
 
-use super::{convergence_order, shared_data, Validator};
+use super::{convergence_order, no_shared_data, shared_data, Validator};
 
 /// Runs the mesh-param checks.
 pub fn run(v: &mut Validator) {
@@ -171,7 +171,7 @@ fn hemisphere(v: &mut Validator) {
 }
 
 fn shared_meshes(v: &mut Validator) {
-    let Some(dir) = shared_data() else { return v.skip("shared meshes", "../shared/data is absent") };
+    let Some(dir) = shared_data() else { return v.skip("shared meshes", no_shared_data()) };
     let files = [
         "cgal_nefertiti.off",
         "cgal_mushroom.off",

@@ -8,7 +8,7 @@ use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{compression_curve, eigenpairs, Eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
 
-use super::{convergence_order, shared_data, Validator};
+use super::{convergence_order, no_shared_data, shared_data, Validator};
 
 /// Runs the mesh-spectral checks.
 pub fn run(v: &mut Validator) {
@@ -162,7 +162,7 @@ fn compression(v: &mut Validator) {
             "npm_bunny.obj".into(),
             mesh_io::read(dir.join("npm_bunny.obj")).map(|d| d.mesh).map_err(|e| e.to_string()),
         )),
-        None => v.skip("npm_bunny.obj: compression", "../shared/data not found"),
+        None => v.skip("npm_bunny.obj: compression", no_shared_data()),
     }
     let keeps = [1, 2, 4, 8, 16, 32, 64, 120];
     for (name, mesh) in cases {

@@ -15,7 +15,7 @@ use mesh_wavelet::{
     WaveletError, WaveletKind,
 };
 
-use super::{shared_data, Validator};
+use super::{no_shared_data, shared_data, Validator};
 
 const KINDS: [WaveletKind; 2] = [WaveletKind::Lazy, WaveletKind::Lifted];
 
@@ -329,7 +329,7 @@ fn detection(v: &mut Validator) {
         }
     }
     let Some(dir) = shared_data() else {
-        v.skip("detect shared meshes", "../shared/data is absent");
+        v.skip("detect shared meshes", no_shared_data());
         return;
     };
     let table = [

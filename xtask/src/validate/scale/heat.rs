@@ -16,7 +16,7 @@ use mesh_geodesic::{exact_distance, fmm_distance, ExactOptions, FmmOptions, Heat
 use mesh_kernel::{TriMesh, VertexId};
 use mesh_wavelet::Scheme;
 
-use super::{shared_data, strip, ScaleMeshes, Validator};
+use super::{no_shared_data, shared_data, strip, ScaleMeshes, Validator};
 
 /// Max and median error relative to the largest reference distance, and
 /// the plateau share (vertices within 1% of the field's own maximum), of
@@ -106,7 +106,7 @@ fn check(v: &mut Validator, name: &str, mesh: &TriMesh, reference: &[f64]) {
 fn reference_error(v: &mut Validator) {
     let name = "heat reference: FMM max error vs exact, bunny Loop x2";
     let Some(dir) = shared_data() else {
-        return v.skip(name, "no shared data folder");
+        return v.skip(name, no_shared_data());
     };
     let mesh = mesh_io::read(dir.join("npm_bunny.obj"))
         .map_err(|e| e.to_string())

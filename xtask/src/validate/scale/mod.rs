@@ -22,7 +22,7 @@ use std::process::Command;
 use mesh_kernel::{shapes, TriMesh};
 use mesh_wavelet::Scheme;
 
-use super::{shared_data, Validator};
+use super::{no_shared_data, shared_data, Validator};
 
 type Res<T> = std::result::Result<T, String>;
 
@@ -45,7 +45,7 @@ impl ScaleMeshes {
     pub fn bunny_loop4(&self) -> Result<&TriMesh, &str> {
         self.bunny_loop4
             .get_or_init(|| {
-                let bunny = read(&shared_data().ok_or("no shared data folder")?.join("npm_bunny.obj"))?;
+                let bunny = read(&shared_data().ok_or_else(no_shared_data)?.join("npm_bunny.obj"))?;
                 mesh_wavelet::subdivide(&bunny, Scheme::Loop, 4).map_err(|e| e.to_string())
             })
             .as_ref()
@@ -56,7 +56,7 @@ impl ScaleMeshes {
     /// non-manifold edges, 1,254 duplicate faces).
     pub fn dragon_res3(&self) -> Result<&TriMesh, &str> {
         self.dragon_res3
-            .get_or_init(|| read(&shared_data().ok_or("no shared data folder")?.join("npm_dragon_res3.ply")))
+            .get_or_init(|| read(&shared_data().ok_or_else(no_shared_data)?.join("npm_dragon_res3.ply")))
             .as_ref()
             .map_err(String::as_str)
     }
