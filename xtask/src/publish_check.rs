@@ -22,6 +22,11 @@ pub struct Args {
     /// Only check the names against the registry (no packaging).
     #[arg(long)]
     names_only: bool,
+    /// Package every crate without building it from its archive
+    /// (`cargo publish --no-verify`): the manifests, metadata and file lists
+    /// are checked in about a minute instead of 20+ minutes on 2 cores.
+    #[arg(long)]
+    no_verify: bool,
 }
 
 /// Runs both steps; fails at the first that fails.
@@ -47,11 +52,20 @@ pub fn run(args: &Args) -> Result<()> {
     if args.names_only {
         return Ok(());
     }
-    let status = cargo(&root).args(["publish", "--workspace", "--dry-run", "--locked"]).status()?;
+    let mut publish = cargo(&root);
+    publish.args(["publish", "--workspace", "--dry-run", "--locked"]);
+    if args.no_verify {
+        publish.arg("--no-verify");
+    }
+    let status = publish.status()?;
     if !status.success() {
         return Err(format!("cargo publish --workspace --dry-run failed ({status})").into());
     }
-    println!("publish-check: every publishable crate packages and builds from its archive");
+    if args.no_verify {
+        println!("publish-check: every publishable crate packages (not built from its archive: --no-verify)");
+    } else {
+        println!("publish-check: every publishable crate packages and builds from its archive");
+    }
     Ok(())
 }
 
