@@ -20,6 +20,7 @@
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
 //! | [`units`] | the unit of length: a mesh rescaled by a power of two so that no algorithm over- or underflows | |
+//! | [`conventions`] | documentation only: the API convention every crate of the workspace follows | |
 //!
 //! ```
 //! use mesh_kernel::{shapes, operators, solver::Cholesky};
@@ -53,6 +54,8 @@ pub mod cache;
 pub mod choice;
 pub mod clean;
 pub mod connectivity;
+#[doc = include_str!("conventions.md")]
+pub mod conventions {}
 pub mod error;
 pub mod geometry;
 pub mod ids;
