@@ -3,6 +3,7 @@
 //! Each subcommand lives in its own module under `commands/` with an `Args`
 //! struct (clap) and a `run` function; this file only lists them.
 
+mod choice;
 mod commands;
 mod errors;
 mod input;

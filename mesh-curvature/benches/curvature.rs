@@ -6,8 +6,8 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use mesh_curvature::{
-    curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, GaussianOptions, MeanOptions, Method,
-    Neighborhood, TensorOptions,
+    curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, GaussianOptions, IntegralOptions,
+    MeanOptions, Neighborhood, TensorMethod, TensorOptions,
 };
 use mesh_kernel::{shapes, TriMesh};
 
@@ -30,9 +30,9 @@ fn meshes() -> Vec<(String, TriMesh)> {
 fn bench(c: &mut Criterion) {
     let meshes = meshes();
     let tensor_methods = [
-        ("tensor_default_quartic_fit", Method::default()),
-        ("tensor_rusinkiewicz", Method::Rusinkiewicz),
-        ("tensor_normal_cycle_1ring", Method::NormalCycle(Neighborhood::Rings(1))),
+        ("tensor_default_quartic_fit", TensorMethod::default()),
+        ("tensor_rusinkiewicz", TensorMethod::Rusinkiewicz),
+        ("tensor_normal_cycle_1ring", TensorMethod::NormalCycle(Neighborhood::Rings(1))),
     ];
     let mut group = c.benchmark_group("curvature");
     for (name, mesh) in &meshes {
@@ -54,7 +54,7 @@ fn bench(c: &mut Criterion) {
             });
         }
         group.bench_with_input(BenchmarkId::new("integral_2ring", name), mesh, |b, m| {
-            b.iter(|| integral_curvature(m, Neighborhood::Rings(2)).unwrap())
+            b.iter(|| integral_curvature(m, &IntegralOptions { neighborhood: Neighborhood::Rings(2) }).unwrap())
         });
     }
     group.finish();

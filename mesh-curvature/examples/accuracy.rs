@@ -114,7 +114,7 @@ fn errors(t: &CurvatureTensor, truth: &Truth) -> Errors {
 
 fn methods() -> Vec<(&'static str, TensorOptions)> {
     let fit = |rings, degree, use_normals, refine_normal| {
-        Method::Fit(FitOptions { neighborhood: Neighborhood::Rings(rings), degree, use_normals, refine_normal })
+        TensorMethod::Fit(FitOptions { neighborhood: Neighborhood::Rings(rings), degree, use_normals, refine_normal })
     };
     let with = |method| TensorOptions { method, normals: NormalWeighting::Max };
     vec![
@@ -122,10 +122,13 @@ fn methods() -> Vec<(&'static str, TensorOptions)> {
         ("cubic fit, 2-ring", with(fit(2, Degree::Cubic, false, true))),
         ("cubic + normals, 1-ring (G&I 2004)", with(fit(1, Degree::Cubic, true, false))),
         ("quadric fit, 1-ring (libigl-like)", with(fit(1, Degree::Quadric, false, false))),
-        ("Rusinkiewicz, Max normals", with(Method::Rusinkiewicz)),
-        ("Rusinkiewicz, area normals", TensorOptions { method: Method::Rusinkiewicz, normals: NormalWeighting::Area }),
-        ("normal cycle, 1-ring", with(Method::NormalCycle(Neighborhood::Rings(1)))),
-        ("normal cycle, 2-ring", with(Method::NormalCycle(Neighborhood::Rings(2)))),
+        ("Rusinkiewicz, Max normals", with(TensorMethod::Rusinkiewicz)),
+        (
+            "Rusinkiewicz, area normals",
+            TensorOptions { method: TensorMethod::Rusinkiewicz, normals: NormalWeighting::Area },
+        ),
+        ("normal cycle, 1-ring", with(TensorMethod::NormalCycle(Neighborhood::Rings(1)))),
+        ("normal cycle, 2-ring", with(TensorMethod::NormalCycle(Neighborhood::Rings(2)))),
     ]
 }
 

@@ -38,7 +38,7 @@ fn main() -> Result<(), String> {
     let o = DVec3::ZERO;
     let all: Keep = |_| true;
     let off_poles: Keep = |p| p.z.abs() <= 0.98;
-    let nurbs = |r: mesh_nurbs::Result<NurbsSurface>| r.map_err(|e| e.to_string());
+    let nurbs = |r: mesh_nurbs::error::Result<NurbsSurface>| r.map_err(|e| e.to_string());
     let cases: Vec<(&str, NurbsSurface, usize, Keep)> = vec![
         ("torus R 2 r 0.5", nurbs(shapes::torus(o, 2.0, 0.5))?, 4, all),
         ("sphere r 1", nurbs(shapes::sphere(o, 1.0))?, 2, all),

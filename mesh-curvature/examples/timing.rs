@@ -57,7 +57,7 @@ fn main() {
     best("gaussian", reps, &mut || drop(gaussian_curvature(&mesh, &Default::default()).unwrap()));
     best("mean", reps, &mut || drop(mean_curvature(&mesh, &Default::default()).unwrap()));
     let fit = |neighborhood, degree, use_normals, refine_normal| TensorOptions {
-        method: Method::Fit(FitOptions { neighborhood, degree, use_normals, refine_normal }),
+        method: TensorMethod::Fit(FitOptions { neighborhood, degree, use_normals, refine_normal }),
         normals: NormalWeighting::Max,
     };
     for (name, o) in [
@@ -65,10 +65,10 @@ fn main() {
         ("quartic r2", fit(Neighborhood::Rings(2), Degree::Quartic, false, true)),
         ("cubic r2", fit(Neighborhood::Rings(2), Degree::Cubic, false, true)),
         ("quadric r1", fit(Neighborhood::Rings(1), Degree::Quadric, false, false)),
-        ("rusinkiewicz", TensorOptions { method: Method::Rusinkiewicz, ..Default::default() }),
+        ("rusinkiewicz", TensorOptions { method: TensorMethod::Rusinkiewicz, ..Default::default() }),
         (
             "normal cycle r1",
-            TensorOptions { method: Method::NormalCycle(Neighborhood::Rings(1)), ..Default::default() },
+            TensorOptions { method: TensorMethod::NormalCycle(Neighborhood::Rings(1)), ..Default::default() },
         ),
     ] {
         best(name, reps, &mut || drop(curvature_tensor(&mesh, &o).unwrap()));

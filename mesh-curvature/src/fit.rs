@@ -49,6 +49,20 @@ pub enum Degree {
 }
 
 impl Degree {
+    /// Every degree; their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and
+    /// [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 3] = [Self::Quadric, Self::Cubic, Self::Quartic];
+
+    /// The name used on the command line: `quadric`, `cubic`, `quartic`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Quadric => "quadric",
+            Self::Cubic => "cubic",
+            Self::Quartic => "quartic",
+        }
+    }
+
     /// The lower of two degrees.
     pub(crate) fn min_with(self, other: Self) -> Self {
         let rank = |d: Self| d as u8;
@@ -60,7 +74,9 @@ impl Degree {
     }
 }
 
-/// Options of [`crate::Method::Fit`]. The default, a quartic through the
+crate::error::named_enum!(Degree, "degree");
+
+/// Options of [`crate::TensorMethod::Fit`]. The default, a quartic through the
 /// 2-ring positions with the tangent plane refined, is the most accurate
 /// estimator of the crate on every validation surface (README).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -19,6 +19,7 @@ pub struct GaussianOptions {
 
 /// Per-vertex Gaussian curvature by angle defect.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct GaussianCurvature {
     /// Integrated Gaussian curvature `2 pi - sum of corner angles` (eq. 2.25
     /// with the sign of a defect: positive on a sphere) at interior vertices;

@@ -13,6 +13,7 @@ use mesh_kernel::par;
 
 /// Curvature integrated over each vertex's neighbourhood.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct IntegralCurvature {
     /// Integral of the Gaussian curvature: the sum of the angle defects
     /// (eq. 2.25) of the neighbourhood's vertices (vertices on the mesh
@@ -41,16 +42,25 @@ impl IntegralCurvature {
     }
 }
 
-/// Integral Gaussian and mean curvature over the neighbourhood `nbh` of each
-/// vertex. A larger neighbourhood smooths noise at the cost of resolution;
-/// the integrals are finite on any mesh. Cost O(V + F) for the per-vertex
-/// quantities plus O(sum of neighbourhood sizes), parallel over vertices.
+/// Options of [`integral_curvature`].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct IntegralOptions {
+    /// The region each vertex's curvature is integrated over (default: the
+    /// 1-ring).
+    pub neighborhood: Neighborhood,
+}
+
+/// Integral Gaussian and mean curvature over the neighbourhood
+/// [`IntegralOptions::neighborhood`] of each vertex. A larger neighbourhood
+/// smooths noise at the cost of resolution; the integrals are finite on any
+/// mesh. Cost O(V + F) for the per-vertex quantities plus O(sum of
+/// neighbourhood sizes), parallel over vertices.
 ///
 /// # Errors
 /// `CurvatureError::InvalidOption` (`rings`) for 0 rings or (`radius`) for a ball radius that is not finite
 /// and positive; the errors of [`crate::gaussian_curvature`] and [`crate::mean_curvature`].
-pub fn integral_curvature(mesh: &TriMesh, nbh: Neighborhood) -> Result<IntegralCurvature> {
-    let nbh = nbh.validate()?;
+pub fn integral_curvature(mesh: &TriMesh, options: &IntegralOptions) -> Result<IntegralCurvature> {
+    let nbh = options.neighborhood.validate()?;
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mut out = integrate(&mesh, nbh.in_unit(unit))?;
     out.mean.iter_mut().for_each(|x| *x *= unit);

@@ -9,7 +9,7 @@
 //! |---|---|---|
 //! | [`gaussian_curvature`] | angle defect, integrated and pointwise, boundary geodesic curvature (Gauss-Bonnet exact) | eq. 2.25 |
 //! | [`mean_curvature`] | Meyer et al. 2003 mean-curvature normal from [`mesh_kernel::operators::cotan_laplacian`] | eq. 2.26 |
-//! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`Method`]: quartic (default), cubic or quadric [jet fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
+//! | [`curvature_tensor`] | [`CurvatureTensor`]: `k1 >= k2`, directions `d1`, `d2`, by a [`TensorMethod`]: quartic (default), cubic or quadric [jet fit](FitOptions), Rusinkiewicz 2004, normal cycle (Cohen-Steiner and Morvan 2003) | eq. 2.27-2.31, 2.18-2.20 |
 //! | [`pointwise_curvature`] | [`PointwiseCurvature`]: pointwise `K = k1 k2` and `H = (k1 + k2) / 2` from the tensor (accurate on irregular meshes), the discrete values (angle defect, cotangent formula) and their integrals, with a [`CurvatureFlag`] wherever a value is not an estimate (zero-area faces, ill-conditioned fits, curvature past the sampling's resolution) | eq. 2.19-2.20, 2.25-2.26 |
 //! | [`integral_curvature`] | Gaussian and mean curvature integrated over a k-ring or ball | 2.5 |
 //! | [`shape_index`], [`curvedness`] | Koenderink's shape descriptors from `k1`, `k2` | |
@@ -50,10 +50,10 @@ mod rusinkiewicz;
 pub mod status;
 pub mod tensor;
 
-pub use error::{CurvatureError, Result};
+pub use error::CurvatureError;
 pub use fit::{Degree, FitOptions};
 pub use gaussian::{gaussian_curvature, GaussianCurvature, GaussianOptions};
-pub use integral::{integral_curvature, IntegralCurvature};
+pub use integral::{integral_curvature, IntegralCurvature, IntegralOptions};
 pub use mean::{mean_curvature, mean_curvature_with_normals, MeanCurvature, MeanOptions};
 /// The choices of vertex area and vertex normal, shared with every crate of the workspace.
 pub use mesh_kernel::{geometry::NormalWeighting, operators::MassKind};
@@ -62,8 +62,10 @@ pub use pointwise::{
     flag_code, pointwise_curvature, sampling_length, CurvatureFlag, FlagCounts, PointwiseCurvature, PointwiseOptions,
 };
 pub use status::{StatusCounts, VertexStatus};
-pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, Method, TensorOptions};
+pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, TensorMethod, TensorOptions};
 
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;
 pub use mesh_kernel::TriMesh;
 
 /// The code blocks of README.md, run as doc-tests.

@@ -28,6 +28,7 @@ impl Default for MeanOptions {
 
 /// Per-vertex mean curvature.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct MeanCurvature {
     /// Integrated mean curvature `H A`: half the length of `(L x)_i`, the
     /// cotangent Laplacian of the positions (eq. 2.26 halved), signed by the

@@ -57,6 +57,7 @@ impl Default for PointwiseOptions {
 /// curvature. Each flagged vertex carries the first reason that applies, in
 /// the order of the variants.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum CurvatureFlag {
     /// Referenced by no face.
     Isolated,
@@ -141,6 +142,7 @@ pub fn flag_code(flag: Option<CurvatureFlag>) -> u8 {
 
 /// Number of vertices per flag.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct FlagCounts {
     /// Per flag, in the order of [`CurvatureFlag::ALL`].
     pub by_flag: [usize; 7],
@@ -183,6 +185,7 @@ impl FlagCounts {
 /// curvature is signed by the tensor's fitted normal. Gaussian curvature
 /// does not depend on the orientation.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct PointwiseCurvature {
     /// The curvature tensor (principal curvatures and directions), with
     /// `k1 = k2 = 0` at vertices flagged in [`Self::flag`]; the directions,

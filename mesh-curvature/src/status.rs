@@ -68,6 +68,7 @@ pub(crate) fn topological_status(mesh: &mesh_kernel::TriMesh) -> Vec<VertexStatu
 
 /// Counts of each status, for summaries.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct StatusCounts {
     /// Vertices with [`VertexStatus::Valid`].
     pub valid: usize,

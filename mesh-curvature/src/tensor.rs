@@ -4,8 +4,8 @@
 use glam::DVec3;
 use mesh_kernel::TriMesh;
 
-use crate::error::Result;
-use crate::fit::{self, FitOptions};
+use crate::error::{CurvatureError, Result};
+use crate::fit::{self, Degree, FitOptions};
 use crate::frame::{tangent_basis, Sym2};
 use crate::neighborhood::Neighborhood;
 use crate::normal_cycle;
@@ -13,9 +13,11 @@ use crate::rusinkiewicz;
 use crate::status::VertexStatus;
 use mesh_kernel::geometry::NormalWeighting;
 
-/// How the curvature tensor is estimated.
+/// How the curvature tensor is estimated. More estimators may come: matches
+/// outside the crate need a wildcard arm.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Method {
+#[non_exhaustive]
+pub enum TensorMethod {
     /// Local polynomial fit of the surface as a height field over the tangent
     /// plane (see [`FitOptions`]): a cubic through the positions and normals
     /// of the neighbourhood (Goldfeather and Interrante 2004), or a quadric
@@ -32,17 +34,79 @@ pub enum Method {
     NormalCycle(Neighborhood),
 }
 
-impl Default for Method {
+impl Default for TensorMethod {
     fn default() -> Self {
         Self::Fit(FitOptions::default())
     }
 }
 
+impl TensorMethod {
+    /// Every estimator by name, with its default neighbourhood: `fit` (the
+    /// default quartic over the 2-ring), `quadric` (a quadric through the
+    /// 1-ring positions, libigl's `principal_curvature`), `rusinkiewicz`,
+    /// `normal-cycle` (1-ring). Their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 4] = [
+        Self::Fit(FitOptions {
+            neighborhood: Neighborhood::Rings(2),
+            degree: Degree::Quartic,
+            use_normals: false,
+            refine_normal: true,
+        }),
+        Self::Fit(FitOptions {
+            neighborhood: Neighborhood::Rings(1),
+            degree: Degree::Quadric,
+            use_normals: false,
+            refine_normal: false,
+        }),
+        Self::Rusinkiewicz,
+        Self::NormalCycle(Neighborhood::Rings(1)),
+    ];
+
+    /// The command-line name: `quadric` for a quadric fit, `fit` for the
+    /// other fits, `rusinkiewicz`, `normal-cycle`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fit(fit) if fit.degree == Degree::Quadric => "quadric",
+            Self::Fit(_) => "fit",
+            Self::Rusinkiewicz => "rusinkiewicz",
+            Self::NormalCycle(_) => "normal-cycle",
+        }
+    }
+
+    /// The neighbourhood the estimator fits or sums over (`None` for
+    /// Rusinkiewicz, whose stencil is the 1-ring of faces).
+    pub fn neighborhood(self) -> Option<Neighborhood> {
+        match self {
+            Self::Fit(fit) => Some(fit.neighborhood),
+            Self::NormalCycle(nbh) => Some(nbh),
+            Self::Rusinkiewicz => None,
+        }
+    }
+
+    /// The same estimator over `neighborhood`.
+    ///
+    /// # Errors
+    /// `CurvatureError::InvalidOption` (`neighborhood`) for Rusinkiewicz, which has no neighbourhood to set.
+    pub fn with_neighborhood(self, neighborhood: Neighborhood) -> Result<Self> {
+        match self {
+            Self::Fit(fit) => Ok(Self::Fit(FitOptions { neighborhood, ..fit })),
+            Self::NormalCycle(_) => Ok(Self::NormalCycle(neighborhood)),
+            Self::Rusinkiewicz => Err(CurvatureError::InvalidOption {
+                name: "neighborhood",
+                reason: "rusinkiewicz has no neighbourhood to set (its stencil is the 1-ring of faces)".into(),
+            }),
+        }
+    }
+}
+
+crate::error::named_enum!(TensorMethod, "method");
+
 /// Options of [`curvature_tensor`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TensorOptions {
     /// The estimator.
-    pub method: Method,
+    pub method: TensorMethod,
     /// The vertex normals the estimator starts from. Default
     /// [`NormalWeighting::Max`] (Max 1999): exact when a vertex and its
     /// 1-ring lie on a sphere, and what Rusinkiewicz 2004 uses; the tensor
@@ -52,7 +116,7 @@ pub struct TensorOptions {
 
 impl Default for TensorOptions {
     fn default() -> Self {
-        Self { method: Method::default(), normals: NormalWeighting::Max }
+        Self { method: TensorMethod::default(), normals: NormalWeighting::Max }
     }
 }
 
@@ -68,6 +132,7 @@ impl Default for TensorOptions {
 /// estimate (isolated, degenerate) have zero curvatures; their directions
 /// are any tangent basis of the normal, or zero when there is no normal.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
 pub struct CurvatureTensor {
     /// Maximum principal curvature.
     pub k1: Vec<f64>,
@@ -159,7 +224,7 @@ pub fn curvedness(k1: f64, k2: f64) -> f64 {
 /// vertices estimates from all incident faces, and vertices where the
 /// estimator has no data (isolated, zero area, too few neighbours for a fit)
 /// zeros, each flagged in [`CurvatureTensor::status`]; no value is NaN.
-/// Cost O(V + F) for [`Method::Rusinkiewicz`], O(sum of neighbourhood sizes)
+/// Cost O(V + F) for [`TensorMethod::Rusinkiewicz`], O(sum of neighbourhood sizes)
 /// for the others; parallel over vertices with the `rayon` feature.
 ///
 /// # Errors
@@ -170,9 +235,9 @@ pub fn curvature_tensor(mesh: &TriMesh, options: &TensorOptions) -> Result<Curva
     // over- or underflows, then bring the curvatures (1 / length) back.
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let method = match options.method {
-        Method::Fit(fit) => Method::Fit(FitOptions { neighborhood: fit.neighborhood.in_unit(unit), ..fit }),
-        Method::NormalCycle(nbh) => Method::NormalCycle(nbh.in_unit(unit)),
-        Method::Rusinkiewicz => Method::Rusinkiewicz,
+        TensorMethod::Fit(fit) => TensorMethod::Fit(FitOptions { neighborhood: fit.neighborhood.in_unit(unit), ..fit }),
+        TensorMethod::NormalCycle(nbh) => TensorMethod::NormalCycle(nbh.in_unit(unit)),
+        TensorMethod::Rusinkiewicz => TensorMethod::Rusinkiewicz,
     };
     let mut tensor = estimate(&mesh, &TensorOptions { method, ..*options })?;
     for k in tensor.k1.iter_mut().chain(&mut tensor.k2) {
@@ -184,9 +249,9 @@ pub fn curvature_tensor(mesh: &TriMesh, options: &TensorOptions) -> Result<Curva
 /// [`curvature_tensor`] in the mesh's own unit.
 fn estimate(mesh: &TriMesh, options: &TensorOptions) -> Result<CurvatureTensor> {
     let local = match options.method {
-        Method::Fit(fit) => fit::estimate(mesh, options.normals, &fit)?,
-        Method::Rusinkiewicz => rusinkiewicz::estimate(mesh, options.normals),
-        Method::NormalCycle(nbh) => normal_cycle::estimate(mesh, options.normals, nbh.validate()?),
+        TensorMethod::Fit(fit) => fit::estimate(mesh, options.normals, &fit)?,
+        TensorMethod::Rusinkiewicz => rusinkiewicz::estimate(mesh, options.normals),
+        TensorMethod::NormalCycle(nbh) => normal_cycle::estimate(mesh, options.normals, nbh.validate()?),
     };
     Ok(assemble(local, mesh.geometry().vertex_normals(NormalWeighting::Area)))
 }

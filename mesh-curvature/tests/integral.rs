@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use mesh_curvature::{
     curvature_tensor, curvedness, gaussian_curvature, integral_curvature, shape_index, CurvatureError, GaussianOptions,
-    Neighborhood, TensorOptions,
+    IntegralOptions, Neighborhood, TensorOptions,
 };
 use mesh_kernel::shapes;
 
@@ -15,7 +15,7 @@ fn a_ball_covering_everything_integrates_the_whole_surface() {
     // Gauss-Bonnet over the whole closed surface: 4 pi for a sphere, 0 for a
     // torus; total mean curvature of the unit sphere: 4 pi (H = 1, area 4 pi).
     let sphere = shapes::icosphere(4).unwrap();
-    let ic = integral_curvature(&sphere, Neighborhood::Ball(3.0)).unwrap();
+    let ic = integral_curvature(&sphere, &IntegralOptions { neighborhood: Neighborhood::Ball(3.0) }).unwrap();
     for i in 0..sphere.vertex_count() {
         assert_eq!(ic.size[i] as usize, sphere.vertex_count());
         assert!((ic.gaussian[i] - 4.0 * PI).abs() < 1e-10);
@@ -24,7 +24,7 @@ fn a_ball_covering_everything_integrates_the_whole_surface() {
         assert!((ic.area[i] - mesh_kernel::geometry::surface_area(&sphere)).abs() < 1e-10);
     }
     let torus = shapes::torus(2.0, 0.5, 48, 12).unwrap();
-    let ic = integral_curvature(&torus, Neighborhood::Rings(100)).unwrap();
+    let ic = integral_curvature(&torus, &IntegralOptions { neighborhood: Neighborhood::Rings(100) }).unwrap();
     assert!(ic.gaussian.iter().all(|k| k.abs() < 1e-10));
 }
 
@@ -34,7 +34,7 @@ fn local_averages_match_the_analytic_curvature() {
     // torus, the average over a small ring is close to the pointwise value.
     let sphere = shapes::icosphere(5).unwrap();
     for k in [1, 2, 4] {
-        let ic = integral_curvature(&sphere, Neighborhood::Rings(k)).unwrap();
+        let ic = integral_curvature(&sphere, &IntegralOptions { neighborhood: Neighborhood::Rings(k) }).unwrap();
         let worst_k = ic.mean_gaussian().iter().map(|x| (x - 1.0).abs()).fold(0.0, f64::max);
         let worst_h = ic.mean_mean().iter().map(|x| (x - 1.0).abs()).fold(0.0, f64::max);
         assert!(worst_k < 5e-4 && worst_h < 1e-4, "{k}: {worst_k} {worst_h}");
@@ -42,16 +42,16 @@ fn local_averages_match_the_analytic_curvature() {
     // The 1-ring average smooths K over a region of size h: O(h^2) off.
     let worst = |nu, nv| {
         let (torus, truth) = common::torus(nu, nv);
-        let ic = integral_curvature(&torus, Neighborhood::Rings(1)).unwrap();
+        let ic = integral_curvature(&torus, &IntegralOptions { neighborhood: Neighborhood::Rings(1) }).unwrap();
         let avg = ic.mean_gaussian();
         (0..torus.vertex_count()).map(|i| (avg[i] - truth.k1[i] * truth.k2[i]).abs()).fold(0.0, f64::max)
     };
     let (coarse, fine) = (worst(128, 32), worst(256, 64));
     assert!(common::order(coarse, fine, 2.0) > 1.8 && fine < 1e-2, "{coarse} {fine}");
     let (torus, _) = common::torus(256, 64);
-    let ic = integral_curvature(&torus, Neighborhood::Rings(1)).unwrap();
+    let ic = integral_curvature(&torus, &IntegralOptions { neighborhood: Neighborhood::Rings(1) }).unwrap();
     // Larger neighbourhoods integrate more: monotone sizes and areas.
-    let wide = integral_curvature(&torus, Neighborhood::Rings(3)).unwrap();
+    let wide = integral_curvature(&torus, &IntegralOptions { neighborhood: Neighborhood::Rings(3) }).unwrap();
     assert!((0..torus.vertex_count()).all(|i| wide.size[i] > ic.size[i] && wide.area[i] > ic.area[i]));
 }
 
@@ -59,7 +59,7 @@ fn local_averages_match_the_analytic_curvature() {
 fn integral_gaussian_sums_angle_defects() {
     let (m, _) = common::ellipsoid(3, [1.0, 0.6, 0.4]);
     let k = gaussian_curvature(&m, &GaussianOptions::default()).unwrap();
-    let ic = integral_curvature(&m, Neighborhood::Rings(1)).unwrap();
+    let ic = integral_curvature(&m, &IntegralOptions { neighborhood: Neighborhood::Rings(1) }).unwrap();
     let conn = m.connectivity();
     for v in m.vertex_ids() {
         let expected: f64 = k.integrated[v.idx()] + conn.neighbors(v).map(|w| k.integrated[w.idx()]).sum::<f64>();
@@ -105,14 +105,17 @@ fn shape_index_and_curvedness_of_known_shapes() {
 fn invalid_neighbourhoods_are_errors() {
     let m = shapes::icosphere(1).unwrap();
     for nbh in [Neighborhood::Rings(0), Neighborhood::Ball(0.0), Neighborhood::Ball(f64::NAN)] {
-        assert!(matches!(integral_curvature(&m, nbh), Err(CurvatureError::InvalidOption { .. })));
+        assert!(matches!(
+            integral_curvature(&m, &IntegralOptions { neighborhood: nbh }),
+            Err(CurvatureError::InvalidOption { .. })
+        ));
     }
 }
 
 #[test]
 fn data_meshes_are_finite() {
     for (name, m) in common::data_meshes() {
-        let ic = integral_curvature(&m, Neighborhood::Rings(2)).unwrap();
+        let ic = integral_curvature(&m, &IntegralOptions { neighborhood: Neighborhood::Rings(2) }).unwrap();
         for v in [&ic.gaussian, &ic.mean, &ic.area, &ic.mean_gaussian(), &ic.mean_mean()] {
             assert!(v.iter().all(|x| x.is_finite()), "{name}");
         }

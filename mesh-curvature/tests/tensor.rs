@@ -5,14 +5,14 @@ mod common;
 
 use common::{errors, order};
 use mesh_curvature::{
-    curvature_tensor, CurvatureError, CurvatureTensor, Degree, FitOptions, Method, Neighborhood, NormalWeighting,
+    curvature_tensor, CurvatureError, CurvatureTensor, Degree, FitOptions, Neighborhood, NormalWeighting, TensorMethod,
     TensorOptions, VertexStatus,
 };
 use mesh_kernel::glam::{DMat3, DVec3};
 use mesh_kernel::{shapes, TriMesh};
 use proptest::prelude::*;
 
-fn tensor(mesh: &TriMesh, method: Method) -> CurvatureTensor {
+fn tensor(mesh: &TriMesh, method: TensorMethod) -> CurvatureTensor {
     curvature_tensor(mesh, &TensorOptions { method, normals: NormalWeighting::Max }).unwrap()
 }
 
@@ -20,8 +20,8 @@ fn default_tensor(mesh: &TriMesh) -> CurvatureTensor {
     curvature_tensor(mesh, &TensorOptions::default()).unwrap()
 }
 
-fn quadric_1ring() -> Method {
-    Method::Fit(FitOptions {
+fn quadric_1ring() -> TensorMethod {
+    TensorMethod::Fit(FitOptions {
         neighborhood: Neighborhood::Rings(1),
         degree: Degree::Quadric,
         use_normals: false,
@@ -74,7 +74,7 @@ fn cylinder_interior_target() {
 // --- Convergence orders ----------------------------------------------------
 
 /// Largest k1 and k2 errors of `method` on tori 64x16, 128x32, 256x64.
-fn torus_errors(method: Method) -> Vec<(f64, f64)> {
+fn torus_errors(method: TensorMethod) -> Vec<(f64, f64)> {
     [(64, 16), (128, 32), (256, 64)]
         .iter()
         .map(|&(nu, nv)| {
@@ -116,23 +116,23 @@ fn default_fit_converges_at_third_order_on_irregular_meshes() {
 
 #[test]
 fn default_fit_converges_on_the_torus() {
-    let errs = torus_errors(Method::default());
+    let errs = torus_errors(TensorMethod::default());
     assert_order(&errs, 3.0);
 }
 
 #[test]
 fn rusinkiewicz_is_second_order_on_the_torus_and_exact_on_spheres() {
-    assert_order(&torus_errors(Method::Rusinkiewicz), 1.8);
+    assert_order(&torus_errors(TensorMethod::Rusinkiewicz), 1.8);
     // Max's normals are exact on spheres, and so is the per-face fit.
     for (m, truth) in [common::sphere(4), common::jittered_sphere(4, 0.3, 1), common::cylinder(32, 8, 0)] {
-        let e = errors(&tensor(&m, Method::Rusinkiewicz), &truth);
+        let e = errors(&tensor(&m, TensorMethod::Rusinkiewicz), &truth);
         assert!(e.k1 < 1e-10 && e.k2 < 1e-10, "{e:?}");
     }
 }
 
 #[test]
 fn normal_cycle_is_second_order_on_the_torus() {
-    assert_order(&torus_errors(Method::NormalCycle(Neighborhood::Rings(1))), 1.8);
+    assert_order(&torus_errors(TensorMethod::NormalCycle(Neighborhood::Rings(1))), 1.8);
 }
 
 #[test]
@@ -149,9 +149,9 @@ fn only_the_refined_fits_converge_at_irregular_vertices() {
         let (m, truth) = common::ellipsoid(level, [1.0, 0.8, 0.6]);
         errors(&tensor(&m, method), &truth).k1
     };
-    let stalled = (err(4, Method::Rusinkiewicz), err(5, Method::Rusinkiewicz));
+    let stalled = (err(4, TensorMethod::Rusinkiewicz), err(5, TensorMethod::Rusinkiewicz));
     assert!(order(stalled.0, stalled.1, 2.0) < 0.5, "{stalled:?}");
-    let refined = (err(4, Method::default()), err(5, Method::default()));
+    let refined = (err(4, TensorMethod::default()), err(5, TensorMethod::default()));
     assert!(order(refined.0, refined.1, 2.0) > 2.5, "{refined:?}");
 }
 
@@ -159,22 +159,22 @@ fn only_the_refined_fits_converge_at_irregular_vertices() {
 fn ball_neighbourhoods_work_like_rings() {
     let (m, truth) = common::torus(128, 32);
     let h = mesh_kernel::geometry::mean_edge_length(&m);
-    let nc = errors(&tensor(&m, Method::NormalCycle(Neighborhood::Ball(1.1 * h))), &truth);
+    let nc = errors(&tensor(&m, TensorMethod::NormalCycle(Neighborhood::Ball(1.1 * h))), &truth);
     assert!(nc.k1 < 0.02 && nc.k2 < 0.05, "{nc:?}");
-    let fit = Method::Fit(FitOptions { neighborhood: Neighborhood::Ball(2.5 * h), ..Default::default() });
+    let fit = TensorMethod::Fit(FitOptions { neighborhood: Neighborhood::Ball(2.5 * h), ..Default::default() });
     let e = errors(&tensor(&m, fit), &truth);
     assert!(e.k1 < 5e-3 && e.k2 < 5e-3, "{e:?}");
 }
 
 // --- Invariants --------------------------------------------------------------
 
-fn all_methods() -> Vec<Method> {
+fn all_methods() -> Vec<TensorMethod> {
     vec![
-        Method::default(),
-        Method::Rusinkiewicz,
-        Method::NormalCycle(Neighborhood::Rings(2)),
+        TensorMethod::default(),
+        TensorMethod::Rusinkiewicz,
+        TensorMethod::NormalCycle(Neighborhood::Rings(2)),
         quadric_1ring(),
-        Method::Fit(FitOptions {
+        TensorMethod::Fit(FitOptions {
             neighborhood: Neighborhood::Rings(1),
             degree: Degree::Cubic,
             use_normals: true,
@@ -335,9 +335,9 @@ fn planes_are_flat_everywhere() {
 fn invalid_options_are_errors() {
     let m = shapes::icosphere(1).unwrap();
     for method in [
-        Method::NormalCycle(Neighborhood::Rings(0)),
-        Method::NormalCycle(Neighborhood::Ball(-1.0)),
-        Method::Fit(FitOptions { neighborhood: Neighborhood::Ball(f64::INFINITY), ..Default::default() }),
+        TensorMethod::NormalCycle(Neighborhood::Rings(0)),
+        TensorMethod::NormalCycle(Neighborhood::Ball(-1.0)),
+        TensorMethod::Fit(FitOptions { neighborhood: Neighborhood::Ball(f64::INFINITY), ..Default::default() }),
     ] {
         let r = curvature_tensor(&m, &TensorOptions { method, ..Default::default() });
         assert!(matches!(r, Err(CurvatureError::InvalidOption { .. })), "{method:?}");

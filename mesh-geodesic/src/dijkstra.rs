@@ -30,6 +30,7 @@ impl Default for DijkstraOptions {
 
 /// The result of [`dijkstra`]: graph distances and the shortest-path tree.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct ShortestPaths {
     /// Graph distance of every vertex to the nearest source; `+infinity`
     /// where no source is reachable (other components, isolated vertices,

@@ -62,7 +62,7 @@ mod support;
 pub mod trace;
 
 pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
-pub use error::{GeodesicError, Result};
+pub use error::GeodesicError;
 pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
 #[cfg(feature = "heat")]
@@ -72,6 +72,9 @@ pub use heat::{heat_distance, HeatBoundary, HeatDistance, HeatFarField, HeatGeod
 pub use mesh_kernel::operators::LaplacianKind;
 pub use sampling::{farthest_point_sampling, geodesic_voronoi, GeodesicVoronoi, SamplingMetric, SamplingOptions};
 pub use trace::{trace_path, GeodesicPath, SurfacePoint, TraceOptions};
+
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;
 
 /// The README's example, compiled and run as a doc-test.
 #[cfg(all(doctest, feature = "heat"))]

@@ -26,6 +26,23 @@ pub enum SamplingMetric {
     Dijkstra,
 }
 
+impl SamplingMetric {
+    /// Every metric; their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and
+    /// [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 2] = [Self::FastMarching, Self::Dijkstra];
+
+    /// The name used on the command line: `fmm`, `dijkstra`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::FastMarching => "fmm",
+            Self::Dijkstra => "dijkstra",
+        }
+    }
+}
+
+crate::error::named_enum!(SamplingMetric, "metric");
+
 /// Options of [`farthest_point_sampling`] and [`geodesic_voronoi`].
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SamplingOptions {
@@ -39,6 +56,7 @@ pub struct SamplingOptions {
 
 /// Samples with their geodesic Voronoi regions.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct GeodesicVoronoi {
     /// The seed vertices, in the order they were given or chosen.
     pub seeds: Vec<VertexId>,

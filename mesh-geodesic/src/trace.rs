@@ -89,6 +89,7 @@ pub struct TraceOptions {
 
 /// A path on the surface, from its start to a source.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct GeodesicPath {
     /// The polyline's points (start first, the source last).
     pub points: Vec<SurfacePoint>,

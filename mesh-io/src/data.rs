@@ -197,6 +197,7 @@ impl From<TriMesh> for MeshData {
 
 /// What a reader changed to turn the file into a [`TriMesh`], and what it left out.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ReadReport {
     /// Polygons with more than three corners, split into a fan of triangles.
     pub polygons_triangulated: usize,

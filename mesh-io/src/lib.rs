@@ -78,9 +78,12 @@ mod text;
 pub use atomic::write_atomic;
 pub use attribute::{Attribute, AttributeElement, AttributeKind, AttributeValues};
 pub use data::{MeshData, MeshView, ReadReport};
-pub use error::{IoError, Location, Result};
+pub use error::{IoError, Location};
 pub use file::{read, read_from, read_with, write, write_polylines, write_to, ReadOptions, WriteOptions};
 pub use format::Format;
 pub use ply::{PlyEncoding, PlyOptions, PlyUvNames};
 pub use precision::WriteReport;
 pub use stl::StlEncoding;
+
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;

@@ -27,6 +27,7 @@ pub const PRECISION_WARNING: f64 = 1e-6;
 /// [`crate::write()`] and [`crate::write_to`] (the counterpart of
 /// [`crate::ReadReport`]).
 #[derive(Debug, Clone, Default, PartialEq)]
+#[non_exhaustive]
 pub struct WriteReport {
     /// Largest relative change of a value stored as `f32`, `|f32(x) - x| /
     /// scale` (see the module documentation); `0` when nothing is narrowed.

@@ -46,7 +46,7 @@ fn scene() -> Scene {
 
 /// Reads `json` as `dir/m.gltf` on another thread; fails the test instead of
 /// hanging when the reader blocks.
-fn read_gltf(dir: &Path, json: String) -> mesh_io::Result<mesh_io::MeshData> {
+fn read_gltf(dir: &Path, json: String) -> mesh_io::error::Result<mesh_io::MeshData> {
     let path = dir.join("m.gltf");
     std::fs::write(&path, json).unwrap();
     let (send, receive) = mpsc::channel();

@@ -12,7 +12,7 @@ use mesh_io::{
 use proptest::prelude::*;
 
 /// Reads `bytes` as `format` from a file named `name`.
-fn read_file(name: &str, bytes: &[u8]) -> mesh_io::Result<mesh_io::MeshData> {
+fn read_file(name: &str, bytes: &[u8]) -> mesh_io::error::Result<mesh_io::MeshData> {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join(name);
     std::fs::write(&path, bytes).unwrap();

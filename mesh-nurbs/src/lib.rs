@@ -49,7 +49,7 @@ pub mod surface;
 pub mod tessellate;
 
 pub use curve::NurbsCurve;
-pub use error::{NurbsError, Result};
+pub use error::NurbsError;
 pub use frame::SurfaceFrame;
 pub use knots::KnotVector;
 pub use surface::{NurbsSurface, SurfaceDerivatives};
@@ -58,6 +58,8 @@ pub use tessellate::{
 };
 
 pub use glam;
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;
 
 /// The code blocks of README.md, run as doc-tests.
 #[cfg(doctest)]

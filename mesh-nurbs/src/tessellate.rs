@@ -32,6 +32,7 @@ pub const DEFAULT_MAX_VERTICES: usize = 1 << 24;
 /// A tessellated surface: the mesh and per-vertex exact geometry, every
 /// vector indexed by vertex like `mesh.positions()`.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct Tessellation {
     /// The triangle mesh (positions `S(u, v)`).
     pub mesh: TriMesh,

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use mesh_kernel::TriMesh;
-use mesh_param::{parameterize_cut, Method, Options};
+use mesh_param::{parameterize_cut, ParamMethod, ParamOptions};
 
 fn read_off(path: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
     let text = std::fs::read_to_string(path)?;
@@ -33,10 +33,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{:<11} {:>7} {:>7} {:>9} {:>9} {:>8} {:>8} {:>5} {:>5} {:>9}",
         "method", "seam", "ms", "angle", "angle max", "area", "area max", "flip", "bij", "E_D/A"
     );
-    for name in Method::NAMES {
-        let method = Method::from_name(name).ok_or("unknown method")?;
+    for method in ParamMethod::ALL {
+        let name = method.name();
         let t = std::time::Instant::now();
-        match parameterize_cut(&mesh, &Options { method, ..Default::default() }) {
+        match parameterize_cut(&mesh, &ParamOptions { method, ..Default::default() }) {
             Ok(p) => {
                 let s = p.param.report.summary;
                 println!(

@@ -16,11 +16,30 @@ use crate::fixed::{weight_matrix, DegeneratePolicy};
 use crate::topology::require_disk;
 use crate::weights::{Harmonic, LocalTriangle, WeightContext};
 
+/// Options of [`Arap`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArapOptions {
+    /// Zero-area faces: weighted as equilateral triangles (default) or
+    /// refused.
+    pub degenerate: DegeneratePolicy,
+    /// Local/global iterations of each [`Arap::solve`] (default 20, as
+    /// [`crate::ParamMethod::Arap`] in [`crate::ParamMethod::ALL`]); at most
+    /// 10,000.
+    pub iterations: usize,
+}
+
+impl Default for ArapOptions {
+    fn default() -> Self {
+        Self { degenerate: DegeneratePolicy::Uniform, iterations: 20 }
+    }
+}
+
 /// A factored ARAP problem on a disk: the global-step matrix and each face's
-/// isometric flattening, ready for any number of iterations from any start.
+/// isometric flattening, ready for any number of solves from any start.
 #[derive(Debug, Clone)]
 pub struct Arap {
     solver: mesh_kernel::solver::DirichletSolver,
+    iterations: usize,
     /// Per face: flattened corners (x_0 = 0) and the opposite cotangents of
     /// the half-edges 0 -> 1, 1 -> 2, 2 -> 0.
     flat: Vec<([DVec2; 3], [f64; 3])>,
@@ -34,10 +53,12 @@ impl Arap {
     /// plus one sparse Cholesky.
     ///
     /// # Errors
-    /// `ParamError::NotADisk` unless the mesh is a topological disk; `ParamError::DegenerateFaces` for
-    /// zero-area faces under `DegeneratePolicy::Error`; `ParamError::Mesh` (`MeshError::NonManifold`, or
-    /// `MeshError::Solver` when the factorization fails).
-    pub fn new(mesh: &TriMesh, degenerate: DegeneratePolicy) -> Result<Self> {
+    /// `ParamError::InvalidOption` (`iterations`) above 10,000; `ParamError::NotADisk` unless the mesh is a
+    /// topological disk; `ParamError::DegenerateFaces` for zero-area faces under `DegeneratePolicy::Error`;
+    /// `ParamError::Mesh` (`MeshError::NonManifold`, or `MeshError::Solver` when the factorization fails).
+    pub fn new(mesh: &TriMesh, options: &ArapOptions) -> Result<Self> {
+        crate::ParamMethod::Arap { iterations: options.iterations }.validate()?;
+        let degenerate = options.degenerate;
         require_disk(mesh)?;
         let ctx = WeightContext::new(mesh);
         if let (DegeneratePolicy::Error, Some(&first)) = (degenerate, ctx.degenerate_faces().first()) {
@@ -60,7 +81,7 @@ impl Arap {
         let mut is_fixed = vec![false; n];
         pinned.iter().for_each(|&v| is_fixed[v] = true);
         let solver = dirichlet_solver(&l, &is_fixed, true)?;
-        Ok(Self { solver, flat, faces: mesh.faces().to_vec(), vertex_count: n })
+        Ok(Self { solver, iterations: options.iterations, flat, faces: mesh.faces().to_vec(), vertex_count: n })
     }
 
     /// The ARAP energy sum_t sum_(i,j) cot_ij |(u_i - u_j) - R_t (x_i - x_j)|^2
@@ -73,7 +94,8 @@ impl Arap {
             .sum()
     }
 
-    /// Runs `iterations` local/global steps from `start` (one UV per vertex),
+    /// Runs [`ArapOptions::iterations`] local/global steps from `start` (one
+    /// UV per vertex),
     /// keeping the first pinned vertex where `start` has it. Fails rather
     /// than return non-finite coordinates.
     ///
@@ -81,7 +103,7 @@ impl Arap {
     /// `ParamError::Mesh` (`MeshError::Dimension`) when `start` does not have one entry per vertex,
     /// (`MeshError::Solver`) when a solve fails; `ParamError::NonFinite` naming the first vertex whose
     /// coordinates become non-finite.
-    pub fn solve(&self, start: &[DVec2], iterations: usize) -> Result<Vec<DVec2>> {
+    pub fn solve(&self, start: &[DVec2]) -> Result<Vec<DVec2>> {
         let n = start.len();
         if n != self.vertex_count {
             return Err(mesh_kernel::MeshError::Dimension(format!(
@@ -96,7 +118,7 @@ impl Arap {
         let mut uv = start.to_vec();
         let fixed_u: Vec<f64> = self.solver.fixed().iter().map(|&v| uv[v].x).collect();
         let fixed_v: Vec<f64> = self.solver.fixed().iter().map(|&v| uv[v].y).collect();
-        for _ in 0..iterations {
+        for _ in 0..self.iterations {
             let mut bu = vec![0.0; n];
             let mut bv = vec![0.0; n];
             for (f, (x, cot)) in self.faces.iter().zip(&self.flat) {
@@ -190,12 +212,12 @@ mod tests {
         for p in m.positions_mut() {
             p.z = 0.5 * (p.x * p.x - p.y * p.y);
         }
-        let arap = Arap::new(&m, DegeneratePolicy::Uniform).unwrap();
+        let arap = Arap::new(&m, &ArapOptions { iterations: 1, ..Default::default() }).unwrap();
         let start: Vec<DVec2> = m.positions().iter().map(|p| DVec2::new(p.x, p.y)).collect();
         let mut uv = start;
         let mut e = arap.energy(&uv);
         for _ in 0..5 {
-            uv = arap.solve(&uv, 1).unwrap();
+            uv = arap.solve(&uv).unwrap();
             let e1 = arap.energy(&uv);
             assert!(e1 <= e * (1.0 + 1e-12), "{e1} > {e}");
             e = e1;

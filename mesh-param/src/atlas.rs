@@ -27,7 +27,7 @@ use crate::distortion::{distortion, summarize, DistortionSummary, FaceDistortion
 use crate::error::{ParamError, Result};
 use crate::fixed::DegeneratePolicy;
 use crate::pack::{min_area_rotation, pack_rectangles, UvRect};
-use crate::param::{map_disk, Method, Options};
+use crate::param::{map_disk, ParamMethod, ParamOptions};
 use crate::segment::{chart_labels, chart_pieces};
 use crate::topology::Topology;
 
@@ -35,7 +35,7 @@ use crate::topology::Topology;
 #[derive(Debug, Clone, PartialEq)]
 pub struct AtlasOptions {
     /// The method of every chart (default: mean-value).
-    pub method: Method,
+    pub method: ParamMethod,
     /// Boundary of the fixed-boundary methods: [`BoundaryMap::Circle`]
     /// (default, chord length) or [`BoundaryMap::Square`];
     /// [`BoundaryMap::Fixed`] names vertices of one disk and is refused.
@@ -56,7 +56,7 @@ pub struct AtlasOptions {
 impl Default for AtlasOptions {
     fn default() -> Self {
         Self {
-            method: Method::MeanValue,
+            method: ParamMethod::MeanValue,
             boundary: BoundaryMap::default(),
             margin: 1.0 / 256.0,
             max_chart_faces: None,
@@ -69,7 +69,7 @@ impl Default for AtlasOptions {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ChartLayout {
     /// Cut to a disk and mapped with this method.
-    Method(Method),
+    Method(ParamMethod),
     /// Every face laid out on its own (the last resort; the chart is then
     /// not a disk but one triangle per face).
     FacesApart,
@@ -94,6 +94,7 @@ impl std::fmt::Display for ChartLayout {
 /// of the surface and, for a region, the borders with the neighbouring
 /// charts) and both sides of its seam.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct Chart {
     /// The connected component of the input it belongs to (numbered as in
     /// `mesh_kernel::Connectivity::components`).
@@ -131,6 +132,7 @@ pub struct Chart {
 
 /// Totals over an [`Atlas`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct AtlasSummary {
     /// Number of charts.
     pub charts: usize,
@@ -153,6 +155,7 @@ pub struct AtlasSummary {
 
 /// A texture atlas: one UV per face corner in the unit square.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct Atlas {
     /// `[f][k]`: UV of corner k of input face f, in [0, 1]^2.
     pub corner_uvs: Vec<[DVec2; 3]>,
@@ -193,7 +196,7 @@ impl Atlas {
 /// packing's O(c^2) for c charts (about 20 trial packings).
 ///
 /// ```
-/// use mesh_param::{atlas, AtlasOptions, Method};
+/// use mesh_param::{atlas, AtlasOptions, ParamMethod};
 ///
 /// // Two components: a torus (cut to a disk) and a sphere.
 /// let torus = mesh_kernel::shapes::torus(2.0, 0.5, 24, 12)?;
@@ -204,7 +207,7 @@ impl Atlas {
 /// f.extend(sphere.faces().iter().map(|t| t.map(|v| v + n)));
 /// let mesh = mesh_kernel::TriMesh::new(p, f)?;
 ///
-/// let a = atlas(&mesh, &AtlasOptions { method: Method::Tutte, ..Default::default() })?;
+/// let a = atlas(&mesh, &AtlasOptions { method: ParamMethod::Tutte, ..Default::default() })?;
 /// assert_eq!(a.charts.len(), 2);
 /// assert_eq!(a.summary.distortion.flipped_faces, 0);
 /// assert!(a.corner_uvs.iter().flatten().all(|q| q.min_element() >= 0.0 && q.max_element() <= 1.0));
@@ -289,8 +292,8 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
 
 /// The options of one chart's map: never normalized (the atlas scales),
 /// zero-area faces weighted uniformly.
-fn map_options(method: Method, boundary: &BoundaryMap) -> Options {
-    Options { method, boundary: boundary.clone(), degenerate: DegeneratePolicy::Uniform, normalize: false }
+fn map_options(method: ParamMethod, boundary: &BoundaryMap) -> ParamOptions {
+    ParamOptions { method, boundary: boundary.clone(), degenerate: DegeneratePolicy::Uniform, normalize: false }
 }
 
 /// A chart before packing: UVs in surface units, turned to their smallest
@@ -353,7 +356,7 @@ fn flatten_bounded(
 /// smallest box. O(size of the piece) plus the method's factorization.
 fn flatten_piece(sub: &SubMesh, component: usize, options: &AtlasOptions, fallback_length: f64) -> Result<Flat> {
     let topology = Topology::of(&sub.mesh)?;
-    let tutte = (Method::Tutte, BoundaryMap::Circle(Spacing::ChordLength));
+    let tutte = (ParamMethod::Tutte, BoundaryMap::Circle(Spacing::ChordLength));
     let mut attempts = vec![(options.method, options.boundary.clone())];
     if attempts[0] != tutte {
         attempts.push(tutte);
@@ -404,7 +407,7 @@ fn flatten_piece(sub: &SubMesh, component: usize, options: &AtlasOptions, fallba
 
 /// Cuts a piece to a disk and maps it; a non-finite coordinate is an
 /// error.
-fn disk_map(piece: &TriMesh, options: &Options) -> Result<(crate::cut::CutMesh, Vec<DVec2>)> {
+fn disk_map(piece: &TriMesh, options: &ParamOptions) -> Result<(crate::cut::CutMesh, Vec<DVec2>)> {
     let cut = cut_to_disk(piece)?;
     let (uv, _) = map_disk(&cut.mesh, options)?;
     if let Some(vertex) = uv.iter().position(|q| !q.is_finite()) {
@@ -543,7 +546,7 @@ mod tests {
         let small = shapes::grid(1.0, 1.0, 4, 4).unwrap();
         let big = shapes::grid(3.0, 3.0, 4, 4).unwrap();
         let mesh = side_by_side(&[small, big]);
-        for method in [Method::Tutte, Method::Harmonic, Method::Lscm] {
+        for method in [ParamMethod::Tutte, ParamMethod::Harmonic, ParamMethod::Lscm] {
             let a = atlas(&mesh, &AtlasOptions { method, ..Default::default() }).unwrap();
             let areas: Vec<f64> = a.charts.iter().map(|c| c.distortion.uv_area).collect();
             assert!((areas[1] / areas[0] - 9.0).abs() < 1e-9, "{}: {areas:?}", method.name());
@@ -565,12 +568,13 @@ mod tests {
         )
         .unwrap();
         let mesh = side_by_side(&[disk, tri, line]);
-        let options = AtlasOptions { method: Method::Harmonic, boundary: BoundaryMap::Square, ..Default::default() };
+        let options =
+            AtlasOptions { method: ParamMethod::Harmonic, boundary: BoundaryMap::Square, ..Default::default() };
         let a = atlas(&mesh, &options).unwrap();
         assert_eq!(a.summary.charts, 3);
-        assert_eq!(a.charts[0].layout, ChartLayout::Method(Method::Harmonic));
+        assert_eq!(a.charts[0].layout, ChartLayout::Method(ParamMethod::Harmonic));
         assert!(a.charts[1].fallback.as_deref().is_some_and(|r| r.contains("square")), "{:?}", a.charts[1].fallback);
-        assert_eq!(a.charts[1].layout, ChartLayout::Method(Method::Tutte));
+        assert_eq!(a.charts[1].layout, ChartLayout::Method(ParamMethod::Tutte));
         assert!(a.charts[2].zero_area && a.summary.zero_area_charts == 1);
         assert!(a.charts[2].rect.size().min_element() > 0.0);
         assert_eq!(a.summary.distortion.degenerate_faces, 2);
@@ -586,8 +590,8 @@ mod tests {
         // A sphere cut into one disk crowds half of it near the centre;
         // regions of at most 320 faces are nearly flat caps.
         let sphere = shapes::icosphere(4).unwrap();
-        let one = atlas(&sphere, &AtlasOptions { method: Method::Tutte, ..Default::default() }).unwrap();
-        let options = AtlasOptions { method: Method::Tutte, max_chart_faces: Some(320), ..Default::default() };
+        let one = atlas(&sphere, &AtlasOptions { method: ParamMethod::Tutte, ..Default::default() }).unwrap();
+        let options = AtlasOptions { method: ParamMethod::Tutte, max_chart_faces: Some(320), ..Default::default() };
         let split = atlas(&sphere, &options).unwrap();
         assert_eq!((one.charts.len(), split.charts.len()), (1, 5120 / 320));
         let (a, b) = (one.summary.distortion, split.summary.distortion);
@@ -620,7 +624,7 @@ mod tests {
         let fixed = AtlasOptions { boundary: BoundaryMap::Fixed(vec![]), ..Default::default() };
         assert!(atlas(&m, &fixed).is_err());
         assert!(atlas(&m, &AtlasOptions { margin: f64::NAN, ..Default::default() }).is_err());
-        let bad = AtlasOptions { method: Method::Intrinsic { lambda: -1.0, mu: 0.0 }, ..Default::default() };
+        let bad = AtlasOptions { method: ParamMethod::Intrinsic { lambda: -1.0, mu: 0.0 }, ..Default::default() };
         assert!(atlas(&m, &bad).is_err());
         let empty = TriMesh::new(vec![], vec![]).unwrap();
         assert_eq!(atlas(&empty, &AtlasOptions::default()).unwrap().charts.len(), 0);

@@ -41,6 +41,39 @@ impl Default for BoundaryMap {
     }
 }
 
+impl Spacing {
+    /// Both spacings; their [`name`](Self::name)s are what [`FromStr`](std::str::FromStr)
+    /// accepts and [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 2] = [Self::ChordLength, Self::Uniform];
+
+    /// The command-line name: `chord`, `uniform`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::ChordLength => "chord",
+            Self::Uniform => "uniform",
+        }
+    }
+}
+
+impl BoundaryMap {
+    /// The boundaries that a name selects (the circle with chord-length
+    /// spacing, the square); [`BoundaryMap::Fixed`] carries positions and
+    /// has no name to parse.
+    pub const ALL: [Self; 2] = [Self::Circle(Spacing::ChordLength), Self::Square];
+
+    /// The command-line name: `circle`, `square`, `fixed`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Circle(_) => "circle",
+            Self::Square => "square",
+            Self::Fixed(_) => "fixed",
+        }
+    }
+}
+
+crate::error::named_enum!(Spacing, "spacing");
+crate::error::named_enum!(BoundaryMap, "boundary");
+
 /// Cumulative parameter t_k in [0, 1) of each vertex of a closed loop:
 /// uniform, or by chord length (zero-length edges get a small positive share
 /// so that distinct vertices never coincide). O(n).

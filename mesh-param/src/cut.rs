@@ -23,6 +23,7 @@ use crate::topology::{require_disk, Topology};
 /// A mesh cut open into a disk: the same faces in the same order, with the
 /// vertices along the seam duplicated (one copy per side).
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct CutMesh {
     /// The disk. Vertex `v < n` is the original vertex `v` (one of its
     /// copies if it lies on the seam); copies are appended after them.

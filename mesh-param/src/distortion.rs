@@ -22,6 +22,7 @@ use crate::weights::DEGENERATE_TOLERANCE;
 /// surface triangle has no area, sigma2 = 0 and the angle distortion is
 /// infinite. Never NaN.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct FaceDistortion {
     /// B = P A (eq. 2.8), row-major: the map from the parameter plane to the
     /// face's own orthonormal frame.
@@ -49,6 +50,7 @@ pub struct FaceDistortion {
 
 /// Totals over all faces.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct DistortionSummary {
     /// Number of faces.
     pub faces: usize,
@@ -87,6 +89,7 @@ pub struct DistortionSummary {
 
 /// Per-face measures and their summary.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct DistortionReport {
     /// One entry per face.
     pub faces: Vec<FaceDistortion>,

@@ -26,6 +26,23 @@ pub enum DegeneratePolicy {
     Error,
 }
 
+impl DegeneratePolicy {
+    /// Both policies; their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and
+    /// [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 2] = [Self::Uniform, Self::Error];
+
+    /// The name used on the command line: `uniform`, `error`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::Error => "error",
+        }
+    }
+}
+
+crate::error::named_enum!(DegeneratePolicy, "degenerate");
+
 /// The matrix L of eq. 2.13 for `weights`: `(L q)_i = sum_j w_ij (q_i - q_j)`,
 /// assembled on the edge pattern in O(V + F): each face is measured once and
 /// adds its terms to the weights of its three edges in both directions.

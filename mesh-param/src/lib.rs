@@ -21,14 +21,14 @@
 //! | [`segment`] | charts: components, optionally split into farthest-point Voronoi regions; one manifold piece each | Gonzalez 1985 |
 //!
 //! ```
-//! use mesh_param::{parameterize, BoundaryMap, Method, Options, Spacing};
+//! use mesh_param::{parameterize, BoundaryMap, ParamMethod, ParamOptions, Spacing};
 //!
 //! let mut mesh = mesh_kernel::shapes::disk(10, 7)?;      // 331 vertices, unit disk
 //! for p in mesh.positions_mut() {
 //!     p.z = 0.5 * (p.x * p.x - p.y * p.y);             // bend it into a saddle
 //! }
-//! let options = Options {
-//!     method: Method::Harmonic,
+//! let options = ParamOptions {
+//!     method: ParamMethod::Harmonic,
 //!     boundary: BoundaryMap::Circle(Spacing::ChordLength),
 //!     ..Default::default()
 //! };
@@ -63,15 +63,18 @@ pub mod segment;
 pub mod topology;
 pub mod weights;
 
-pub use arap::Arap;
+pub use arap::{Arap, ArapOptions};
 pub use atlas::{atlas, Atlas, AtlasOptions, AtlasSummary, Chart, ChartLayout};
 pub use boundary::{BoundaryMap, Spacing};
 pub use cut::{cut_to_disk, CutMesh};
 pub use distortion::{distortion, DistortionReport, DistortionSummary, FaceDistortion};
-pub use error::{ParamError, Result};
+pub use error::ParamError;
 pub use fixed::{DegeneratePolicy, FixedBoundarySolver};
 pub use lscm::{lscm, LscmOptions};
 pub use pack::{pack_rectangles, Packing, UvRect};
-pub use param::{parameterize, parameterize_cut, CutParameterization, Method, Options, Parameterization};
+pub use param::{parameterize, parameterize_cut, CutParameterization, ParamMethod, ParamOptions, Parameterization};
 pub use topology::{require_disk, Topology};
 pub use weights::{Authalic, Harmonic, Intrinsic, MeanValue, Uniform, Weights};
+
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;

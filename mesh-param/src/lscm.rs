@@ -22,8 +22,9 @@ pub struct LscmOptions {
     /// equal to their 3D distance.
     pub pins: Option<[(VertexId, DVec2); 2]>,
     /// Scale and translate the result into the unit square [0, 1]^2
-    /// (uniformly, keeping the aspect ratio). Default: false here;
-    /// [`crate::parameterize`] sets it.
+    /// (uniformly, keeping the aspect ratio). Default false, as in
+    /// [`crate::ParamOptions::normalize`]: the map keeps the surface's unit of
+    /// length and the pins stay where given; set it for texture coordinates.
     pub normalize: bool,
     /// What to do with zero-area faces (weighted as equilateral, or refused).
     pub degenerate: DegeneratePolicy,
@@ -31,6 +32,7 @@ pub struct LscmOptions {
 
 /// The LSCM result: one UV per vertex and the faces weighted uniformly.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct LscmMap {
     /// Parameter coordinates, one per vertex.
     pub uv: Vec<DVec2>,

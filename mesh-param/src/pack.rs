@@ -46,6 +46,7 @@ impl UvRect {
 
 /// Where [`pack_rectangles`] put each rectangle.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct Packing {
     /// The common factor applied to every size.
     pub scale: f64,

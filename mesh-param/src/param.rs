@@ -5,7 +5,7 @@
 use glam::DVec2;
 use mesh_kernel::{FaceId, TriMesh, VertexId};
 
-use crate::arap::Arap;
+use crate::arap::{Arap, ArapOptions};
 use crate::boundary::{self, BoundaryMap};
 use crate::cut::{cut_to_disk, CutMesh};
 use crate::distortion::{distortion, DistortionReport};
@@ -15,9 +15,11 @@ use crate::lscm::{lscm, normalize_to_unit_box, LscmOptions};
 use crate::topology::require_disk;
 use crate::weights::{Authalic, Harmonic, Intrinsic, MeanValue, Uniform, Weights};
 
-/// Which parameterization.
+/// Which parameterization. More methods may come: matches outside the crate
+/// need a wildcard arm.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Method {
+#[non_exhaustive]
+pub enum ParamMethod {
     /// Tutte's barycentric embedding, w_ij = 1 / |N(i)| (eq. 2.12-2.13):
     /// bijective onto a convex boundary.
     Tutte,
@@ -45,27 +47,22 @@ pub enum Method {
     },
 }
 
-impl Method {
-    /// The names accepted by [`Method::from_name`].
-    pub const NAMES: &'static [&'static str] =
-        &["tutte", "mean-value", "harmonic", "authalic", "intrinsic", "lscm", "arap"];
+impl ParamMethod {
+    /// Every method, with default parameters (intrinsic: lambda = mu = 1/2;
+    /// ARAP: 20 iterations). Their [`name`](Self::name)s are what [`FromStr`](std::str::FromStr)
+    /// accepts and [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 7] = [
+        Self::Tutte,
+        Self::MeanValue,
+        Self::Harmonic,
+        Self::Authalic,
+        Self::Intrinsic { lambda: 0.5, mu: 0.5 },
+        Self::Lscm,
+        Self::Arap { iterations: 20 },
+    ];
 
-    /// A method by its command-line name, with default parameters
-    /// (intrinsic: lambda = mu = 1/2; ARAP: 20 iterations).
-    pub fn from_name(name: &str) -> Option<Self> {
-        Some(match name {
-            "tutte" | "uniform" => Self::Tutte,
-            "mean-value" | "floater" => Self::MeanValue,
-            "harmonic" | "conformal" => Self::Harmonic,
-            "authalic" => Self::Authalic,
-            "intrinsic" => Self::Intrinsic { lambda: 0.5, mu: 0.5 },
-            "lscm" => Self::Lscm,
-            "arap" => Self::Arap { iterations: 20 },
-            _ => return None,
-        })
-    }
-
-    /// The command-line name.
+    /// The command-line name: `tutte`, `mean-value`, `harmonic`, `authalic`,
+    /// `intrinsic`, `lscm`, `arap`.
     pub fn name(&self) -> &'static str {
         match self {
             Self::Tutte => "tutte",
@@ -110,11 +107,13 @@ impl Method {
     }
 }
 
+crate::error::named_enum!(ParamMethod, "method");
+
 /// Options of [`parameterize`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Options {
+pub struct ParamOptions {
     /// The method (default: mean-value, bijective and reproducing planes).
-    pub method: Method,
+    pub method: ParamMethod,
     /// Boundary of the fixed-boundary methods (default: circle, chord
     /// length). LSCM uses two entries of [`BoundaryMap::Fixed`] as its pins
     /// (and picks its own otherwise); ARAP starts from the harmonic map onto
@@ -122,23 +121,26 @@ pub struct Options {
     pub boundary: BoundaryMap,
     /// Zero-area faces: weighted uniformly (default) or refused.
     pub degenerate: DegeneratePolicy,
-    /// Scale free-boundary results (LSCM, ARAP) into [0, 1]^2 (default true).
+    /// Scale free-boundary results (LSCM, ARAP) into [0, 1]^2, uniformly.
+    /// Default false, as in [`LscmOptions::normalize`]: the map keeps the
+    /// surface's unit of length; set it for texture coordinates.
     pub normalize: bool,
 }
 
-impl Default for Options {
+impl Default for ParamOptions {
     fn default() -> Self {
         Self {
-            method: Method::MeanValue,
+            method: ParamMethod::MeanValue,
             boundary: BoundaryMap::default(),
             degenerate: DegeneratePolicy::Uniform,
-            normalize: true,
+            normalize: false,
         }
     }
 }
 
 /// A parameterization: one UV per vertex and its distortion.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct Parameterization {
     /// Parameter coordinates, one per vertex (unreferenced vertices sit at
     /// the centroid of the boundary, or at a pin for LSCM).
@@ -157,10 +159,10 @@ pub struct Parameterization {
 /// iteration.
 ///
 /// ```
-/// use mesh_param::{parameterize, Method, Options};
+/// use mesh_param::{parameterize, ParamMethod, ParamOptions};
 ///
 /// let mesh = mesh_kernel::shapes::disk(8, 1)?;
-/// let p = parameterize(&mesh, &Options { method: Method::Tutte, ..Default::default() })?;
+/// let p = parameterize(&mesh, &ParamOptions { method: ParamMethod::Tutte, ..Default::default() })?;
 /// assert!(p.report.summary.bijective);
 /// # Ok::<(), mesh_param::ParamError>(())
 /// ```
@@ -170,7 +172,7 @@ pub struct Parameterization {
 /// boundary that does not list every boundary vertex (`boundary`); `ParamError::NotADisk` unless the mesh is
 /// a topological disk; `ParamError::DegenerateFaces`, `ParamError::NonFinite` and `ParamError::Mesh`
 /// (`MeshError::Solver`) from the solve.
-pub fn parameterize(mesh: &TriMesh, options: &Options) -> Result<Parameterization> {
+pub fn parameterize(mesh: &TriMesh, options: &ParamOptions) -> Result<Parameterization> {
     let (uv, degenerate_faces) = map_disk(mesh, options)?;
     let report = distortion(mesh, &uv)?;
     Ok(Parameterization { uv, report, degenerate_faces })
@@ -179,7 +181,7 @@ pub fn parameterize(mesh: &TriMesh, options: &Options) -> Result<Parameterizatio
 /// The map of [`parameterize`] without its distortion report: UVs per
 /// vertex and the zero-area faces weighted uniformly. Same cost but the O(F)
 /// report.
-pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>, Vec<FaceId>)> {
+pub(crate) fn map_disk(mesh: &TriMesh, options: &ParamOptions) -> Result<(Vec<DVec2>, Vec<FaceId>)> {
     options.method.validate()?;
     let boundary = require_disk(mesh)?.vertices.clone();
     // The weights' intermediates reach degree four in the coordinates: solve
@@ -188,17 +190,17 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>,
     let mesh = mesh.as_ref();
     let mut in_mesh_units = false;
     let (mut uv, degenerate_faces) = match options.method {
-        Method::Lscm => {
+        ParamMethod::Lscm => {
             let pins = lscm_pins(&options.boundary)?;
             in_mesh_units = pins.is_none();
             let map = lscm(mesh, &LscmOptions { pins, normalize: false, degenerate: options.degenerate })?;
             (map.uv, map.degenerate_faces)
         }
-        Method::Arap { iterations } => {
+        ParamMethod::Arap { iterations } => {
             in_mesh_units = true;
             let start = fixed_boundary(mesh, &Harmonic, &boundary, options)?;
-            let arap = Arap::new(mesh, options.degenerate)?;
-            (arap.solve(&start.0, iterations)?, start.1)
+            let arap = Arap::new(mesh, &ArapOptions { degenerate: options.degenerate, iterations })?;
+            (arap.solve(&start.0)?, start.1)
         }
         method => {
             let weights = method.weights().ok_or(ParamError::InvalidOption {
@@ -208,7 +210,7 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &Options) -> Result<(Vec<DVec2>,
             fixed_boundary(mesh, weights.as_ref(), &boundary, options)?
         }
     };
-    if options.normalize && matches!(options.method, Method::Lscm | Method::Arap { .. }) {
+    if options.normalize && matches!(options.method, ParamMethod::Lscm | ParamMethod::Arap { .. }) {
         normalize_to_unit_box(&mut uv);
     } else if in_mesh_units && unit != 1.0 {
         uv.iter_mut().for_each(|q| *q *= unit);
@@ -221,7 +223,7 @@ fn fixed_boundary<W: Weights + ?Sized>(
     mesh: &TriMesh,
     weights: &W,
     boundary: &[VertexId],
-    options: &Options,
+    options: &ParamOptions,
 ) -> Result<(Vec<DVec2>, Vec<FaceId>)> {
     let (ids, positions) = match &options.boundary {
         BoundaryMap::Circle(spacing) => (boundary.to_vec(), boundary::circle(mesh, boundary, *spacing)),
@@ -260,6 +262,7 @@ fn lscm_pins(boundary: &BoundaryMap) -> Result<Option<[(VertexId, DVec2); 2]>> {
 /// A parameterization of a mesh cut into a disk: UVs per vertex of the cut
 /// mesh, i.e. per corner of the original faces.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct CutParameterization {
     /// The disk and its seam.
     pub cut: CutMesh,
@@ -280,7 +283,7 @@ impl CutParameterization {
 ///
 /// # Errors
 /// The errors of [`crate::cut_to_disk`] and [`parameterize`].
-pub fn parameterize_cut(mesh: &TriMesh, options: &Options) -> Result<CutParameterization> {
+pub fn parameterize_cut(mesh: &TriMesh, options: &ParamOptions) -> Result<CutParameterization> {
     let cut = cut_to_disk(mesh)?;
     let param = parameterize(&cut.mesh, options)?;
     Ok(CutParameterization { cut, param })
@@ -292,11 +295,12 @@ mod tests {
 
     #[test]
     fn method_names_round_trip() {
-        for name in Method::NAMES {
-            assert_eq!(Method::from_name(name).map(|m| m.name()), Some(*name));
+        for method in ParamMethod::ALL {
+            assert_eq!(method.to_string().parse::<ParamMethod>(), Ok(method));
         }
-        assert_eq!(Method::from_name("conformal"), Some(Method::Harmonic));
-        assert!(Method::from_name("magic").is_none());
-        assert!(Method::Lscm.weights().is_none() && Method::Tutte.weights().is_some());
+        let names = ParamMethod::ALL.map(|m| m.name());
+        assert!((1..names.len()).all(|i| !names[..i].contains(&names[i])), "{names:?}");
+        assert!(matches!("magic".parse::<ParamMethod>(), Err(ParamError::InvalidOption { name: "method", .. })));
+        assert!(ParamMethod::Lscm.weights().is_none() && ParamMethod::Tutte.weights().is_some());
     }
 }

@@ -6,10 +6,15 @@ mod common;
 
 use glam::{DVec2, DVec3};
 use mesh_kernel::{shapes, TriMesh, VertexId};
-use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options};
+use mesh_param::{parameterize, parameterize_cut, BoundaryMap, ParamMethod, ParamOptions};
 
-const FIXED_METHODS: [Method; 5] =
-    [Method::Tutte, Method::MeanValue, Method::Harmonic, Method::Authalic, Method::Intrinsic { lambda: 0.5, mu: 0.5 }];
+const FIXED_METHODS: [ParamMethod; 5] = [
+    ParamMethod::Tutte,
+    ParamMethod::MeanValue,
+    ParamMethod::Harmonic,
+    ParamMethod::Authalic,
+    ParamMethod::Intrinsic { lambda: 0.5, mu: 0.5 },
+];
 
 /// The boundary vertices of a disk with their (x, y) positions.
 fn own_boundary(mesh: &TriMesh, f: impl Fn(DVec3) -> DVec2) -> BoundaryMap {
@@ -36,10 +41,13 @@ fn planar_disk_is_reproduced_by_linear_precision_weights() {
     let xy = |p: DVec3| DVec2::new(p.x, p.y);
     for (rings, seed) in [(3, 1), (10, 2), (30, 3)] {
         let m = planar_disk(rings, seed);
-        for method in
-            [Method::MeanValue, Method::Harmonic, Method::Authalic, Method::Intrinsic { lambda: 0.3, mu: 0.7 }]
-        {
-            let options = Options { method, boundary: own_boundary(&m, xy), ..Default::default() };
+        for method in [
+            ParamMethod::MeanValue,
+            ParamMethod::Harmonic,
+            ParamMethod::Authalic,
+            ParamMethod::Intrinsic { lambda: 0.3, mu: 0.7 },
+        ] {
+            let options = ParamOptions { method, boundary: own_boundary(&m, xy), ..Default::default() };
             let p = parameterize(&m, &options).unwrap();
             let err = max_error(&p.uv, &m, xy);
             eprintln!("planar reproduction, {} rings, {}: {err:.1e}", rings, method.name());
@@ -49,7 +57,7 @@ fn planar_disk_is_reproduced_by_linear_precision_weights() {
             assert!((p.report.summary.angle_distortion_max - 1.0).abs() < 1e-10);
         }
         // Tutte has no linear precision on an irregular mesh: it must move vertices.
-        let options = Options { method: Method::Tutte, boundary: own_boundary(&m, xy), ..Default::default() };
+        let options = ParamOptions { method: ParamMethod::Tutte, boundary: own_boundary(&m, xy), ..Default::default() };
         assert!(max_error(&parameterize(&m, &options).unwrap().uv, &m, xy) > 1e-3);
     }
 }
@@ -58,7 +66,8 @@ fn planar_disk_is_reproduced_by_linear_precision_weights() {
 fn lscm_reproduces_a_planar_disk_up_to_similarity() {
     for (rings, seed) in [(3, 4), (12, 5), (30, 6)] {
         let m = planar_disk(rings, seed);
-        let p = parameterize(&m, &Options { method: Method::Lscm, ..Default::default() }).unwrap();
+        let p = parameterize(&m, &ParamOptions { method: ParamMethod::Lscm, normalize: true, ..Default::default() })
+            .unwrap();
         let xy: Vec<DVec2> = m.positions().iter().map(|p| DVec2::new(p.x, p.y)).collect();
         let r = common::similarity_residual(&xy, &p.uv);
         eprintln!("LSCM planar reproduction, {rings} rings: {r:.1e}");
@@ -99,11 +108,14 @@ fn harmonic_map_converges_to_the_stereographic_projection() {
     for rings in [4, 8, 16, 32] {
         let m = hemisphere(rings);
         let h = 1.0 / rings as f64;
-        let options =
-            Options { method: Method::Harmonic, boundary: own_boundary(&m, stereographic), ..Default::default() };
+        let options = ParamOptions {
+            method: ParamMethod::Harmonic,
+            boundary: own_boundary(&m, stereographic),
+            ..Default::default()
+        };
         let harmonic = parameterize(&m, &options).unwrap();
         let e_h = max_error(&harmonic.uv, &m, stereographic);
-        let lscm = parameterize(&m, &Options { method: Method::Lscm, ..Default::default() }).unwrap();
+        let lscm = parameterize(&m, &ParamOptions { method: ParamMethod::Lscm, ..Default::default() }).unwrap();
         let e_l = lscm.report.summary.angle_distortion_mean - 1.0;
         eprintln!("hemisphere h = {h:.4}: harmonic max error {e_h:.2e}, LSCM mean angle distortion - 1 = {e_l:.2e}");
         if let Some((ph, pl)) = previous {
@@ -124,16 +136,16 @@ fn intrinsic_endpoints_are_conformal_and_authalic() {
     for p in m.positions_mut() {
         p.z = 0.4 * (2.0 * p.x).sin() * p.y;
     }
-    let run = |method| parameterize(&m, &Options { method, ..Default::default() }).unwrap().uv;
-    let (harmonic, authalic) = (run(Method::Harmonic), run(Method::Authalic));
-    let conformal_end = run(Method::Intrinsic { lambda: 2.0, mu: 0.0 });
-    let authalic_end = run(Method::Intrinsic { lambda: 0.0, mu: 3.0 });
+    let run = |method| parameterize(&m, &ParamOptions { method, ..Default::default() }).unwrap().uv;
+    let (harmonic, authalic) = (run(ParamMethod::Harmonic), run(ParamMethod::Authalic));
+    let conformal_end = run(ParamMethod::Intrinsic { lambda: 2.0, mu: 0.0 });
+    let authalic_end = run(ParamMethod::Intrinsic { lambda: 0.0, mu: 3.0 });
     let diff = |a: &[DVec2], b: &[DVec2]| a.iter().zip(b).map(|(p, q)| p.distance(*q)).fold(0.0, f64::max);
     assert!(diff(&harmonic, &conformal_end) < 1e-14);
     assert!(diff(&authalic, &authalic_end) < 1e-14);
     // And the two ends really differ on a curved surface.
     assert!(diff(&harmonic, &authalic) > 1e-3);
-    let mid = run(Method::Intrinsic { lambda: 0.5, mu: 0.5 });
+    let mid = run(ParamMethod::Intrinsic { lambda: 0.5, mu: 0.5 });
     assert!(diff(&mid, &harmonic) > 1e-4 && diff(&mid, &authalic) > 1e-4);
 }
 
@@ -143,8 +155,8 @@ fn developable_cylinder_strip_is_unrolled_isometrically() {
     // an isometry (up to scale), Dirichlet energy = area.
     for (around, along) in [(12, 3), (48, 10)] {
         let m = shapes::cylinder(1.0, 2.0, around, along).unwrap();
-        for method in [Method::Lscm, Method::Arap { iterations: 30 }] {
-            let p = parameterize_cut(&m, &Options { method, ..Default::default() }).unwrap();
+        for method in [ParamMethod::Lscm, ParamMethod::Arap { iterations: 30 }] {
+            let p = parameterize_cut(&m, &ParamOptions { method, ..Default::default() }).unwrap();
             assert!(!p.cut.seam.is_empty());
             let s = p.param.report.summary;
             eprintln!(
@@ -156,12 +168,12 @@ fn developable_cylinder_strip_is_unrolled_isometrically() {
             );
             assert!(s.bijective);
             // LSCM is exact; ARAP converges linearly towards the isometry.
-            let tol = if method == Method::Lscm { 1e-10 } else { 1e-2 };
+            let tol = if method == ParamMethod::Lscm { 1e-10 } else { 1e-2 };
             assert!((s.dirichlet_area_ratio - 1.0).abs() < tol * tol, "{}", s.dirichlet_area_ratio);
             assert!(s.angle_distortion_max - 1.0 < tol && s.area_distortion_max - 1.0 < tol);
         }
         // The harmonic map onto a circle is not conformal here.
-        let h = parameterize_cut(&m, &Options { method: Method::Harmonic, ..Default::default() }).unwrap();
+        let h = parameterize_cut(&m, &ParamOptions { method: ParamMethod::Harmonic, ..Default::default() }).unwrap();
         assert!(h.param.report.summary.dirichlet_area_ratio > 1.01);
     }
 }
@@ -171,14 +183,15 @@ fn square_boundary_keeps_corners() {
     let m = shapes::grid(1.0, 1.0, 8, 8).unwrap();
     let corners = [0u32, 8, 80, 72].map(VertexId);
     for method in FIXED_METHODS {
-        let p = parameterize(&m, &Options { method, boundary: BoundaryMap::Square, ..Default::default() }).unwrap();
+        let p =
+            parameterize(&m, &ParamOptions { method, boundary: BoundaryMap::Square, ..Default::default() }).unwrap();
         // The square's corners are at a quarter of the boundary length each:
         // the grid's own corners.
         for (c, v) in corners.iter().enumerate() {
             let expected = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y][c];
             assert!(p.uv[v.idx()].distance(expected) < 1e-14, "{}", method.name());
         }
-        if method != Method::Tutte {
+        if method != ParamMethod::Tutte {
             // The grid is the unit square: reproduced exactly.
             let err = max_error(&p.uv, &m, |p| DVec2::new(p.x, p.y));
             assert!(err < 1e-13, "{}: {err}", method.name());

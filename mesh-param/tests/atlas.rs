@@ -8,7 +8,7 @@ mod common;
 
 use glam::{DVec2, DVec3};
 use mesh_kernel::{shapes, TriMesh};
-use mesh_param::{atlas, Atlas, AtlasOptions, Method, UvRect};
+use mesh_param::{atlas, Atlas, AtlasOptions, ParamMethod, UvRect};
 use proptest::prelude::*;
 
 /// Checks the invariants; returns the number of flipped and collapsed faces
@@ -33,7 +33,7 @@ fn check(mesh: &TriMesh, a: &Atlas) -> (usize, usize) {
     (flipped, collapsed)
 }
 
-fn options(method: Method, split: bool) -> AtlasOptions {
+fn options(method: ParamMethod, split: bool) -> AtlasOptions {
     AtlasOptions {
         method,
         max_chart_faces: split.then_some(500),
@@ -46,12 +46,12 @@ fn options(method: Method, split: bool) -> AtlasOptions {
 fn shared_meshes() {
     for name in mesh_testkit::data::SHARED_MESHES.map(|m| m.name) {
         let Some(mesh) = common::read(name) else { return };
-        for method in [Method::Tutte, Method::Harmonic, Method::Lscm] {
+        for method in [ParamMethod::Tutte, ParamMethod::Harmonic, ParamMethod::Lscm] {
             for split in [false, true] {
                 let a =
                     atlas(&mesh, &options(method, split)).unwrap_or_else(|e| panic!("{name} {}: {e}", method.name()));
                 let (flipped, collapsed) = check(&mesh, &a);
-                if method == Method::Tutte {
+                if method == ParamMethod::Tutte {
                     assert_eq!((flipped, collapsed), (0, 0), "{name} split {split}");
                     assert_eq!(a.summary.distortion.flipped_faces, 0, "{name}");
                 }
@@ -93,10 +93,10 @@ proptest! {
             f.extend(m.faces().iter().map(|t| t.map(|v| v + n)));
         }
         let mesh = TriMesh::new(p, f).unwrap();
-        for method in [Method::Tutte, Method::Harmonic, Method::Lscm] {
+        for method in [ParamMethod::Tutte, ParamMethod::Harmonic, ParamMethod::Lscm] {
             let a = atlas(&mesh, &options(method, split)).unwrap();
             let (flipped, collapsed) = check(&mesh, &a);
-            if method == Method::Tutte {
+            if method == ParamMethod::Tutte {
                 prop_assert_eq!((flipped, collapsed), (0, 0));
             }
             let zero_area = parts.iter().filter(|x| x.0 == 4).count();

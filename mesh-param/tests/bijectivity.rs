@@ -6,11 +6,11 @@ mod common;
 
 use glam::DVec3;
 use mesh_kernel::shapes;
-use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options, ParamError, Spacing};
+use mesh_param::{parameterize, parameterize_cut, BoundaryMap, ParamError, ParamMethod, ParamOptions, Spacing};
 use proptest::prelude::*;
 
-fn run(mesh: &mesh_kernel::TriMesh, method: Method, boundary: BoundaryMap) -> mesh_param::DistortionSummary {
-    parameterize(mesh, &Options { method, boundary, ..Default::default() }).unwrap().report.summary
+fn run(mesh: &mesh_kernel::TriMesh, method: ParamMethod, boundary: BoundaryMap) -> mesh_param::DistortionSummary {
+    parameterize(mesh, &ParamOptions { method, boundary, ..Default::default() }).unwrap().report.summary
 }
 
 #[test]
@@ -18,14 +18,14 @@ fn data_disks_map_bijectively() {
     for name in ["cgal_nefertiti.off", "cgal_mushroom.off", "cgal_degtri_sliding.off"] {
         let Some(m) = common::read(name) else { return };
         for spacing in [Spacing::Uniform, Spacing::ChordLength] {
-            for method in [Method::Tutte, Method::MeanValue] {
+            for method in [ParamMethod::Tutte, ParamMethod::MeanValue] {
                 let s = run(&m, method, BoundaryMap::Circle(spacing));
                 assert!(s.bijective && s.flipped_faces == 0, "{name} {} {spacing:?}", method.name());
             }
         }
         // Observed, not guaranteed by a theorem: the conformal methods are
         // bijective on these meshes too.
-        for method in [Method::Harmonic, Method::Lscm] {
+        for method in [ParamMethod::Harmonic, ParamMethod::Lscm] {
             let s = run(&m, method, BoundaryMap::default());
             eprintln!(
                 "{name} {}: bijective {}, angle distortion {:.3}",
@@ -48,12 +48,12 @@ fn data_non_disks_are_refused_then_cut() {
     ];
     for (name, found) in expected {
         let Some(m) = common::read(name) else { return };
-        match parameterize(&m, &Options::default()) {
+        match parameterize(&m, &ParamOptions::default()) {
             Err(ParamError::NotADisk { found: f }) => assert!(f.contains(found), "{name}: {f}"),
             other => panic!("{name}: {other:?}"),
         }
-        for method in [Method::Tutte, Method::Harmonic] {
-            let p = parameterize_cut(&m, &Options { method, ..Default::default() }).unwrap();
+        for method in [ParamMethod::Tutte, ParamMethod::Harmonic] {
+            let p = parameterize_cut(&m, &ParamOptions { method, ..Default::default() }).unwrap();
             let s = p.param.report.summary;
             eprintln!("{name} cut along {} edges, {}: bijective {}", p.cut.seam.len(), method.name(), s.bijective);
             assert!(s.bijective, "{name} {}", method.name());
@@ -78,7 +78,7 @@ proptest! {
     #[test]
     fn tutte_and_mean_value_never_flip(rings in 1usize..12, seed in 0u64..10_000, height in 0.0f64..2.0, waves in 0.5f64..8.0) {
         let m = perturbed_disk(rings, seed, height, waves);
-        for method in [Method::Tutte, Method::MeanValue] {
+        for method in [ParamMethod::Tutte, ParamMethod::MeanValue] {
             let s = run(&m, method, BoundaryMap::Circle(Spacing::ChordLength));
             prop_assert_eq!(s.flipped_faces + s.collapsed_faces, 0);
             prop_assert!(s.bijective);
@@ -95,7 +95,7 @@ proptest! {
                 *p = DVec3::new(-p.x, p.y, 0.3 * p.x);
             }
         }
-        for method in [Method::Tutte, Method::MeanValue] {
+        for method in [ParamMethod::Tutte, ParamMethod::MeanValue] {
             prop_assert!(run(&m, method, BoundaryMap::default()).bijective);
         }
     }

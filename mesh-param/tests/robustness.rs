@@ -6,16 +6,16 @@ mod common;
 use glam::{DVec2, DVec3};
 use mesh_kernel::{shapes, TriMesh, VertexId};
 use mesh_param::{
-    cut_to_disk, parameterize, parameterize_cut, BoundaryMap, DegeneratePolicy, Method, Options, ParamError,
+    cut_to_disk, parameterize, parameterize_cut, BoundaryMap, DegeneratePolicy, ParamError, ParamMethod, ParamOptions,
 };
 use proptest::prelude::*;
 
-fn all_methods() -> Vec<Method> {
-    Method::NAMES.iter().map(|n| Method::from_name(n).unwrap()).collect()
+fn all_methods() -> Vec<ParamMethod> {
+    ParamMethod::ALL.to_vec()
 }
 
-fn options(method: Method) -> Options {
-    Options { method, ..Default::default() }
+fn options(method: ParamMethod) -> ParamOptions {
+    ParamOptions { method, ..Default::default() }
 }
 
 #[test]
@@ -29,9 +29,10 @@ fn zero_area_triangles_give_finite_bijective_maps() {
         assert!(p.report.summary.angle_distortion_mean.is_finite());
         assert!(p.report.summary.bijective, "{} is not bijective", method.name());
     }
-    let refuse = Options { degenerate: DegeneratePolicy::Error, ..Default::default() };
+    let refuse = ParamOptions { degenerate: DegeneratePolicy::Error, ..Default::default() };
     assert!(matches!(parameterize(&m, &refuse), Err(ParamError::DegenerateFaces { count: 4, .. })));
-    let refuse_lscm = Options { method: Method::Lscm, degenerate: DegeneratePolicy::Error, ..Default::default() };
+    let refuse_lscm =
+        ParamOptions { method: ParamMethod::Lscm, degenerate: DegeneratePolicy::Error, ..Default::default() };
     assert!(matches!(parameterize(&m, &refuse_lscm), Err(ParamError::DegenerateFaces { .. })));
 }
 
@@ -51,7 +52,7 @@ fn coincident_vertices_and_collapsed_meshes_are_finite() {
                 Err(e) => assert!(!e.to_string().is_empty()),
             }
         }
-        let tutte = parameterize(&mesh, &options(Method::Tutte)).unwrap();
+        let tutte = parameterize(&mesh, &options(ParamMethod::Tutte)).unwrap();
         assert!(tutte.report.summary.bijective);
     }
 }
@@ -63,12 +64,12 @@ fn isolated_vertices_are_carried_along() {
     p.push(DVec3::new(9.0, 9.0, 9.0));
     let m = TriMesh::new(p, f).unwrap();
     for method in all_methods() {
-        let r = parameterize(&m, &options(method)).unwrap();
+        let r = parameterize(&m, &ParamOptions { normalize: true, ..options(method) }).unwrap();
         assert_eq!(r.uv.len(), m.vertex_count());
         assert!(r.uv.iter().all(|q| q.is_finite()));
         assert!(r.report.summary.bijective, "{}", method.name());
         // The free-boundary results stay in the unit box.
-        if matches!(method, Method::Lscm | Method::Arap { .. }) {
+        if matches!(method, ParamMethod::Lscm | ParamMethod::Arap { .. }) {
             assert!(r.uv.iter().all(|q| q.min_element() >= -1e-12 && q.max_element() <= 1.0 + 1e-12));
         }
     }
@@ -76,11 +77,11 @@ fn isolated_vertices_are_carried_along() {
 
 #[test]
 fn wrong_topology_says_what_it_found() {
-    let err = |m: &TriMesh| parameterize(m, &Options::default()).unwrap_err().to_string();
+    let err = |m: &TriMesh| parameterize(m, &ParamOptions::default()).unwrap_err().to_string();
     assert!(err(&shapes::torus(2.0, 0.5, 12, 6).unwrap()).contains("closed surface of genus 1"));
     let p = (0..5).map(|i| DVec3::new(i as f64, (i * i) as f64, 0.0)).collect();
     let bowtie = TriMesh::new(p, vec![[0, 1, 2], [0, 3, 4]]).unwrap();
-    assert!(matches!(parameterize(&bowtie, &Options::default()), Err(ParamError::Mesh(_))));
+    assert!(matches!(parameterize(&bowtie, &ParamOptions::default()), Err(ParamError::Mesh(_))));
     assert!(matches!(cut_to_disk(&bowtie), Err(ParamError::Mesh(_))));
     let empty = TriMesh::new(vec![], vec![]).unwrap();
     assert!(err(&empty).contains("without faces"));
@@ -92,33 +93,33 @@ fn wrong_topology_says_what_it_found() {
         TriMesh::new(p, f).unwrap()
     };
     assert!(err(&two).contains("2 connected components"));
-    assert!(parameterize_cut(&two, &Options::default()).unwrap_err().to_string().contains("separately"));
+    assert!(parameterize_cut(&two, &ParamOptions::default()).unwrap_err().to_string().contains("separately"));
 }
 
 #[test]
 fn invalid_options_are_errors() {
     let m = shapes::disk(3, 1).unwrap();
-    let bad = |method, boundary| parameterize(&m, &Options { method, boundary, ..Default::default() }).is_err();
+    let bad = |method, boundary| parameterize(&m, &ParamOptions { method, boundary, ..Default::default() }).is_err();
     let circle = BoundaryMap::default();
-    assert!(bad(Method::Intrinsic { lambda: -1.0, mu: 1.0 }, circle.clone()));
-    assert!(bad(Method::Intrinsic { lambda: 0.0, mu: 0.0 }, circle.clone()));
-    assert!(bad(Method::Intrinsic { lambda: f64::NAN, mu: 1.0 }, circle.clone()));
-    assert!(bad(Method::Arap { iterations: 1_000_000 }, circle));
+    assert!(bad(ParamMethod::Intrinsic { lambda: -1.0, mu: 1.0 }, circle.clone()));
+    assert!(bad(ParamMethod::Intrinsic { lambda: 0.0, mu: 0.0 }, circle.clone()));
+    assert!(bad(ParamMethod::Intrinsic { lambda: f64::NAN, mu: 1.0 }, circle.clone()));
+    assert!(bad(ParamMethod::Arap { iterations: 1_000_000 }, circle));
     // A fixed boundary missing a vertex, with a NaN, or out of range.
     let b = m.connectivity().boundary_loops().unwrap()[0].vertices.clone();
     let partial: Vec<(VertexId, DVec2)> = b.iter().skip(1).map(|&v| (v, DVec2::ZERO)).collect();
-    assert!(bad(Method::Harmonic, BoundaryMap::Fixed(partial)));
+    assert!(bad(ParamMethod::Harmonic, BoundaryMap::Fixed(partial)));
     let mut nan: Vec<(VertexId, DVec2)> = b.iter().map(|&v| (v, DVec2::ONE * v.0 as f64)).collect();
     nan[0].1.x = f64::NAN;
-    assert!(bad(Method::Harmonic, BoundaryMap::Fixed(nan)));
+    assert!(bad(ParamMethod::Harmonic, BoundaryMap::Fixed(nan)));
     let mut out: Vec<(VertexId, DVec2)> = b.iter().map(|&v| (v, DVec2::ONE * v.0 as f64)).collect();
     out.push((VertexId(1000), DVec2::ZERO));
-    assert!(bad(Method::Harmonic, BoundaryMap::Fixed(out)));
+    assert!(bad(ParamMethod::Harmonic, BoundaryMap::Fixed(out)));
     // LSCM takes exactly two pins.
     let three = BoundaryMap::Fixed(b.iter().take(3).map(|&v| (v, DVec2::ONE * v.0 as f64)).collect());
-    assert!(bad(Method::Lscm, three));
+    assert!(bad(ParamMethod::Lscm, three));
     let tri = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
-    let square = Options { boundary: BoundaryMap::Square, ..Default::default() };
+    let square = ParamOptions { boundary: BoundaryMap::Square, ..Default::default() };
     assert!(parameterize(&tri, &square).is_err());
     // A single triangle is a disk: every method maps it.
     for method in all_methods() {
@@ -145,7 +146,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
     #[test]
     fn triangle_soups_never_panic_or_nan(mesh in soup(), m in 0usize..7) {
-        let method = Method::from_name(Method::NAMES[m]).unwrap();
+        let method = ParamMethod::ALL[m];
         let direct = parameterize(&mesh, &options(method)).map(|p| p.uv);
         let cut = parameterize_cut(&mesh, &options(method)).map(|p| p.param.uv);
         for uv in [direct, cut].into_iter().flatten() {

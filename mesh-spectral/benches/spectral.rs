@@ -18,7 +18,7 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{compress, eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
+use mesh_spectral::{compress, eigenpairs, EigenOptions, HarmonicsOptions, ManifoldHarmonics};
 
 fn group<'a>(c: &'a mut Criterion, name: &str) -> criterion::BenchmarkGroup<'a, criterion::measurement::WallTime> {
     let mut g = c.benchmark_group(name);
@@ -36,9 +36,9 @@ fn bench_eigenpairs(c: &mut Criterion) {
     let mut g = group(c, "eigenpairs_k20");
     for mesh in meshes() {
         let l = operators::cotan_laplacian(&mesh);
-        let m = operators::mass_matrix(&mesh, MassKind::MixedVoronoi);
+        let m = operators::lumped_mass(&mesh, MassKind::MixedVoronoi);
         g.bench_with_input(BenchmarkId::from_parameter(mesh.vertex_count()), &(l, m), |b, (l, m)| {
-            b.iter(|| eigenpairs(l, m, 20, &Options::default()).expect("eigenpairs"))
+            b.iter(|| eigenpairs(l, m, 20, &EigenOptions::default()).expect("eigenpairs"))
         });
     }
 }

@@ -9,7 +9,7 @@
 //! ```
 //!
 //! `EIGS_BLOCK`, `EIGS_BASIS`, `EIGS_GUARD`, `EIGS_SHIFT` override the
-//! corresponding [`Options`] fields (for tuning); `EIGS_LAPLACIAN`
+//! corresponding [`EigenOptions`] fields (for tuning); `EIGS_LAPLACIAN`
 //! (auto, cotan, intrinsic) and `EIGS_COMPONENT` (all, largest) choose the
 //! pencil; `EIGS_DUMP=PREFIX` writes it as `PREFIX_L.mtx` (Matrix Market)
 //! and `PREFIX_M.txt` (the mass diagonal) so that scipy solves the
@@ -22,9 +22,8 @@ use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use mesh_kernel::operators::mass::diagonal;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{eigenpairs, pencil, ComponentSelection, LaplacianKind, MassKind, Options};
+use mesh_spectral::{eigenpairs, pencil, ComponentSelection, EigenOptions, LaplacianKind, MassKind};
 
 fn main() -> ExitCode {
     match run() {
@@ -57,21 +56,21 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     };
     let t = Instant::now();
     let p = pencil(&mesh, laplacian, MassKind::MixedVoronoi)?;
-    let (l, m) = (p.laplacian, diagonal(p.mass.clone()));
+    let l = p.laplacian;
     let assemble = t.elapsed().as_secs_f64();
     writeln!(std::io::stdout(), "operator: {}", p.info.describe())?;
     if let Ok(prefix) = std::env::var("EIGS_DUMP") {
         dump(&prefix, &l, &p.mass)?;
     }
     let env = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<f64>().ok());
-    let options = Options {
+    let options = EigenOptions {
         block_size: env("EIGS_BLOCK").map(|v| v as usize),
         basis_size: env("EIGS_BASIS").map(|v| v as usize),
         guard: env("EIGS_GUARD").map(|v| v as usize),
         shift: env("EIGS_SHIFT"),
-        ..Options::default()
+        ..EigenOptions::default()
     };
-    let pairs = eigenpairs(&l, &m, k, &options)?;
+    let pairs = eigenpairs(&l, &p.mass, k, &options)?;
     let s = &pairs.stats;
     let worst = pairs.residuals.iter().copied().fold(0.0, f64::max);
     let worst_abs = pairs.absolute_residuals.iter().copied().fold(0.0, f64::max);

@@ -17,7 +17,8 @@ use crate::harmonics::ManifoldHarmonics;
 /// Reconstruction error with `keep` coefficients, relative to the diagonal
 /// of the mesh's bounding box.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CompressionError {
+#[non_exhaustive]
+pub struct SpectralCompressionPoint {
     /// Coefficients kept (per coordinate).
     pub keep: usize,
     /// Area-weighted RMS distance `sqrt(sum m_v d_v^2 / sum m_v) / diagonal`.
@@ -36,7 +37,11 @@ pub struct CompressionError {
 /// `SpectralError::InvalidOption` (`keep`) when `keep` exceeds the basis size; `SpectralError::Dimension`
 /// when the basis was computed for another vertex count; `SpectralError::Mesh` when the result does not make
 /// a valid mesh.
-pub fn compress(mesh: &TriMesh, harmonics: &ManifoldHarmonics, keep: usize) -> Result<(TriMesh, CompressionError)> {
+pub fn compress(
+    mesh: &TriMesh,
+    harmonics: &ManifoldHarmonics,
+    keep: usize,
+) -> Result<(TriMesh, SpectralCompressionPoint)> {
     check_keep(harmonics, keep)?;
     let mut positions = Vec::new();
     let curve = curve(mesh, harmonics, &[keep], Some(&mut positions))?;
@@ -54,7 +59,7 @@ pub fn compression_curve(
     mesh: &TriMesh,
     harmonics: &ManifoldHarmonics,
     keeps: &[usize],
-) -> Result<Vec<CompressionError>> {
+) -> Result<Vec<SpectralCompressionPoint>> {
     for &keep in keeps {
         check_keep(harmonics, keep)?;
     }
@@ -78,7 +83,7 @@ fn curve(
     harmonics: &ManifoldHarmonics,
     keeps: &[usize],
     positions: Option<&mut Vec<DVec3>>,
-) -> Result<Vec<CompressionError>> {
+) -> Result<Vec<SpectralCompressionPoint>> {
     let p = mesh.positions();
     let n = p.len();
     let pm = Mat::from_fn(n, 3, |i, j| p[i][j]);
@@ -99,7 +104,7 @@ fn curve(
     let counted = excluded.iter().filter(|e| !**e).count().max(1) as f64;
     let mut order: Vec<usize> = (0..keeps.len()).collect();
     order.sort_by_key(|&i| keeps[i]);
-    let mut out = vec![CompressionError { keep: 0, rms: 0.0, vertex_rms: 0.0, max: 0.0 }; keeps.len()];
+    let mut out = vec![SpectralCompressionPoint { keep: 0, rms: 0.0, vertex_rms: 0.0, max: 0.0 }; keeps.len()];
     let mut recon = Mat::<f64>::zeros(n, 3);
     let mut done = 0;
     for &i in &order {
@@ -118,7 +123,7 @@ fn curve(
             worst = worst.max(d2);
         }
         let rms = if total_mass > 0.0 { (weighted / total_mass).sqrt() } else { 0.0 };
-        out[i] = CompressionError {
+        out[i] = SpectralCompressionPoint {
             keep,
             rms: rms * scale,
             vertex_rms: (plain / counted).sqrt() * scale,

@@ -16,7 +16,7 @@ use glam::DVec3;
 use mesh_kernel::TriMesh;
 use sprs::CsMat;
 
-use crate::eigen::{eigenpairs, tall, ComponentSelection, Eigenpairs, Options};
+use crate::eigen::{eigenpairs, tall, ComponentSelection, EigenOptions, Eigenpairs};
 use crate::error::{Result, SpectralError};
 use mesh_kernel::operators::{LaplacianKind, MassKind};
 
@@ -33,7 +33,7 @@ pub struct HarmonicsOptions {
     /// Eigensolver options; with `component: Largest` the basis lives on
     /// the mesh's largest connected component (most faces) and is zero on
     /// the other vertices.
-    pub eigen: Options,
+    pub eigen: EigenOptions,
 }
 
 /// The manifold-harmonic basis of a mesh: `k` eigenpairs and the mass they
@@ -87,8 +87,7 @@ impl ManifoldHarmonics {
                 ),
             });
         }
-        let m = mesh_kernel::operators::mass::diagonal(mass.clone());
-        let pairs = eigenpairs(&p.laplacian, &m, k, &options.eigen)?;
+        let pairs = eigenpairs(&p.laplacian, &mass, k, &options.eigen)?;
         Ok(Self { pairs, mass, info: Some(p.info) })
     }
 

@@ -15,13 +15,13 @@
 //!
 //! ```
 //! use mesh_kernel::{operators, shapes};
-//! use mesh_spectral::{eigenpairs, Options};
+//! use mesh_spectral::{eigenpairs, EigenOptions};
 //!
 //! // Unit sphere: eigenvalues l (l + 1), each repeated 2 l + 1 times.
 //! let mesh = shapes::icosphere(3)?;
 //! let l = operators::cotan_laplacian(&mesh);
-//! let m = operators::mass_matrix(&mesh, operators::MassKind::MixedVoronoi);
-//! let pairs = eigenpairs(&l, &m, 9, &Options::default())?;
+//! let mass = operators::lumped_mass(&mesh, operators::MassKind::MixedVoronoi);
+//! let pairs = eigenpairs(&l, &mass, 9, &EigenOptions::default())?;
 //! assert!(pairs.values[0].abs() < 1e-9);
 //! assert!(pairs.values[1..4].iter().all(|v| (v - 2.0).abs() < 0.02));
 //! assert!(pairs.values[4..9].iter().all(|v| (v - 6.0).abs() < 0.1));
@@ -43,12 +43,15 @@ pub mod harmonics;
 pub mod hks;
 pub mod operators;
 
-pub use compress::{compress, compression_curve, CompressionError};
-pub use eigen::{eigenpairs, ComponentSelection, Eigenpairs, Method, Options, Stats, COMPONENT_NAMES};
-pub use error::{Result, SpectralError};
+pub use compress::{compress, compression_curve, SpectralCompressionPoint};
+pub use eigen::{eigenpairs, ComponentSelection, EigenOptions, EigenSolver, EigenStats, Eigenpairs};
+pub use error::SpectralError;
 pub use filter::{filter, filter_mesh, filter_with, Transfer};
 pub use harmonics::{HarmonicsOptions, ManifoldHarmonics};
 pub use hks::{heat_kernel_signature, hks_times};
 /// The choices of Laplacian and mass, shared with every crate of the workspace.
 pub use mesh_kernel::operators::{LaplacianKind, MassKind};
 pub use operators::{laplace_beltrami, pencil, OperatorInfo, Pencil};
+
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;

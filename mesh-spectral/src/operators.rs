@@ -12,6 +12,7 @@ use crate::error::{Result, SpectralError};
 /// What [`pencil`] built: the Laplacian taken (never `Auto`), why, and on
 /// what.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct OperatorInfo {
     /// The Laplacian asked for (possibly `Auto`).
     pub requested: LaplacianKind,
@@ -56,6 +57,7 @@ impl OperatorInfo {
 
 /// Stiffness, lumped mass and what was built.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct Pencil {
     /// `L`, symmetric positive semi-definite, CSR.
     pub laplacian: CsMat<f64>,

@@ -10,8 +10,8 @@ use mesh_kernel::glam::DVec3;
 use mesh_kernel::operators::mass::diagonal;
 use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{
-    eigenpairs, pencil, ComponentSelection, HarmonicsOptions, LaplacianKind, ManifoldHarmonics, MassKind, Method,
-    Options, SpectralError,
+    eigenpairs, pencil, ComponentSelection, EigenOptions, EigenSolver, HarmonicsOptions, LaplacianKind,
+    ManifoldHarmonics, MassKind, SpectralError,
 };
 
 /// Icosphere of `level` scaled by `radius` and moved by `offset`.
@@ -46,9 +46,9 @@ fn auto_pencil(mesh: &TriMesh) -> (sprs::CsMat<f64>, sprs::CsMat<f64>, Vec<f64>)
 #[test]
 fn one_exact_zero_per_component_then_the_spheres_groups() {
     let mesh = spheres_and_fragment();
-    let (l, m, mass) = auto_pencil(&mesh);
+    let (l, _, mass) = auto_pencil(&mesh);
     // 3 zeros | 1/2 x3 (radius 2) | 3/2 x5 (radius 2) | 2 x3 (radius 1).
-    let pairs = eigenpairs(&l, &m, 14, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &mass, 14, &EigenOptions::default()).unwrap();
     assert_eq!(&pairs.values[..3], &[0.0; 3], "{:?}", pairs.values);
     assert_eq!(pairs.stats.zero_eigenvalues, 3);
     assert_eq!(pairs.stats.components, 3);
@@ -58,7 +58,7 @@ fn one_exact_zero_per_component_then_the_spheres_groups() {
         assert!((v - t).abs() <= 0.03 * t, "pair {}: {v} vs {t}", j + 3);
     }
     assert!(pairs.residuals.iter().all(|r| *r <= pairs.stats.tolerance), "{:?}", pairs.residuals);
-    assert_eq!(pairs.stats.tolerance, Options::default().tolerance);
+    assert_eq!(pairs.stats.tolerance, EigenOptions::default().tolerance);
     assert!(orthonormality_error(&pairs, &mass) < 1e-10);
     // The zeros are the pieces' constants, largest piece first.
     let first = pairs.vector(0);
@@ -69,10 +69,10 @@ fn one_exact_zero_per_component_then_the_spheres_groups() {
 #[test]
 fn fewer_pairs_than_components_are_all_null_vectors() {
     let mesh = spheres_and_fragment();
-    let (l, m, _) = auto_pencil(&mesh);
-    let pairs = eigenpairs(&l, &m, 2, &Options::default()).unwrap();
+    let (l, _, mass) = auto_pencil(&mesh);
+    let pairs = eigenpairs(&l, &mass, 2, &EigenOptions::default()).unwrap();
     assert_eq!(pairs.values, vec![0.0, 0.0]);
-    assert_eq!(pairs.stats.method, Method::NullSpace);
+    assert_eq!(pairs.stats.method, EigenSolver::NullSpace);
     assert_eq!(pairs.stats.operator_columns, 0);
 }
 
@@ -83,8 +83,8 @@ fn tiny_fragments_give_no_negative_eigenvalue() {
     let mut parts = vec![sphere(3, 1.0, 0.0)];
     parts.extend((0..30).map(|i| sphere(1, 1e-6, 5.0 + i as f64)));
     let mesh = union(&parts);
-    let (l, m, _) = auto_pencil(&mesh);
-    let pairs = eigenpairs(&l, &m, 34, &Options::default()).unwrap();
+    let (l, _, mass) = auto_pencil(&mesh);
+    let pairs = eigenpairs(&l, &mass, 34, &EigenOptions::default()).unwrap();
     assert_eq!(&pairs.values[..31], &[0.0; 31]);
     assert!(pairs.values[31..].iter().all(|v| (v - 2.0).abs() < 0.06), "{:?}", &pairs.values[31..]);
     assert!(pairs.residuals.iter().all(|r| *r <= pairs.stats.tolerance));
@@ -94,9 +94,9 @@ fn tiny_fragments_give_no_negative_eigenvalue() {
 fn largest_component_only() {
     let mesh = spheres_and_fragment();
     // Matrix level: the component of largest mass (the radius-2 sphere).
-    let (l, m, _) = auto_pencil(&mesh);
-    let o = Options { component: ComponentSelection::Largest, ..Options::default() };
-    let pairs = eigenpairs(&l, &m, 9, &o).unwrap();
+    let (l, _, mass) = auto_pencil(&mesh);
+    let o = EigenOptions { component: ComponentSelection::Largest, ..EigenOptions::default() };
+    let pairs = eigenpairs(&l, &mass, 9, &o).unwrap();
     assert_eq!(pairs.values[0], 0.0);
     assert!(pairs.values[1..].iter().all(|v| *v > 0.4), "{:?}", pairs.values);
     assert_eq!((pairs.stats.zero_eigenvalues, pairs.stats.components, pairs.stats.components_used), (1, 3, 1));
@@ -146,15 +146,19 @@ fn zero_area_faces_take_the_intrinsic_laplacian_and_stay_psd() {
     assert_eq!(p.info.degenerate_faces, slivers);
     // Positive semi-definite: every eigenvalue of the whole pencil >= 0
     // (dense path, all pairs), the zero exact.
-    let m = diagonal(p.mass.clone());
     let available = p.mass.iter().filter(|x| **x > 0.0).count();
-    let all =
-        eigenpairs(&p.laplacian, &m, available, &Options { dense_threshold: 10_000, ..Options::default() }).unwrap();
+    let all = eigenpairs(
+        &p.laplacian,
+        &p.mass,
+        available,
+        &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() },
+    )
+    .unwrap();
     assert_eq!(all.values[0], 0.0);
     assert!(all.values[1] > 1.5, "{:?}", &all.values[..4]);
     // The Krylov path: the unit sphere's 0 | 2 x3 | 6 x5, residuals within tolerance.
-    let pairs = eigenpairs(&p.laplacian, &m, 9, &Options::default()).unwrap();
-    assert_eq!(pairs.stats.method, Method::BlockKrylovSchur);
+    let pairs = eigenpairs(&p.laplacian, &p.mass, 9, &EigenOptions::default()).unwrap();
+    assert_eq!(pairs.stats.method, EigenSolver::BlockKrylovSchur);
     assert!(pairs.values[1..4].iter().all(|v| (v - 2.0).abs() < 0.06), "{:?}", pairs.values);
     assert!(pairs.values[4..9].iter().all(|v| (v - 6.0).abs() < 0.3), "{:?}", pairs.values);
     assert!(pairs.residuals.iter().all(|r| *r <= pairs.stats.tolerance));
@@ -167,16 +171,16 @@ fn zero_area_faces_take_the_intrinsic_laplacian_and_stay_psd() {
 #[test]
 fn a_solve_without_enough_iterations_is_not_converged() {
     let mesh = shapes::icosphere(4).unwrap();
-    let (l, m, _) = auto_pencil(&mesh);
-    let o = Options {
+    let (l, _, mass) = auto_pencil(&mesh);
+    let o = EigenOptions {
         block_size: Some(8),
         basis_size: Some(32),
         max_restarts: 0,
         tolerance: 1e-12,
         dense_threshold: 0,
-        ..Options::default()
+        ..EigenOptions::default()
     };
-    match eigenpairs(&l, &m, 20, &o) {
+    match eigenpairs(&l, &mass, 20, &o) {
         Err(SpectralError::NotConverged { wanted, residuals, attempts, converged, .. }) => {
             assert_eq!((wanted, attempts), (19, 3));
             assert_eq!(residuals.len(), 19);
@@ -184,7 +188,7 @@ fn a_solve_without_enough_iterations_is_not_converged() {
         }
         other => panic!("expected NotConverged, got {other:?}"),
     }
-    let message = eigenpairs(&l, &m, 20, &o).unwrap_err().to_string();
+    let message = eigenpairs(&l, &mass, 20, &o).unwrap_err().to_string();
     assert!(message.contains("relative residuals"), "{message}");
 }
 
@@ -192,9 +196,9 @@ fn a_solve_without_enough_iterations_is_not_converged() {
 fn a_matrix_whose_rows_do_not_sum_to_zero_has_no_null_vector() {
     // L + M: every eigenvalue moves up by one, nothing is deflated.
     let mesh = shapes::icosphere(3).unwrap();
-    let (l, m, _) = auto_pencil(&mesh);
+    let (l, m, mass) = auto_pencil(&mesh);
     let shifted = &l + &m;
-    let pairs = eigenpairs(&shifted, &m, 4, &Options::default()).unwrap();
+    let pairs = eigenpairs(&shifted, &mass, 4, &EigenOptions::default()).unwrap();
     assert_eq!(pairs.stats.zero_eigenvalues, 0);
     assert!((pairs.values[0] - 1.0).abs() < 1e-9, "{:?}", pairs.values);
     assert!(pairs.values[1..].iter().all(|v| (v - 3.0).abs() < 0.1), "{:?}", pairs.values);

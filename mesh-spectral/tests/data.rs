@@ -3,14 +3,14 @@
 mod common;
 
 use common::{data_mesh, masses, orthonormality_error, pencil};
-use mesh_spectral::{eigenpairs, HarmonicsOptions, LaplacianKind, ManifoldHarmonics, Options};
+use mesh_spectral::{eigenpairs, EigenOptions, HarmonicsOptions, LaplacianKind, ManifoldHarmonics};
 
 #[test]
 fn real_meshes_give_accurate_orthonormal_pairs() {
     for name in ["cgal_elephant.off", "cgal_holes.off", "cgal_fandisk.off", "npm_bunny.obj", "cgal_mushroom.off"] {
         let Some(mesh) = data_mesh(name) else { continue };
         let (l, m) = pencil(&mesh);
-        let pairs = eigenpairs(&l, &m, 40, &Options::default()).unwrap();
+        let pairs = eigenpairs(&l, &m, 40, &EigenOptions::default()).unwrap();
         let scale = pairs.values[39];
         assert!(pairs.values[0].abs() < 1e-9 * scale, "{name}: {}", pairs.values[0]);
         assert!(pairs.values[1] > 1e-6 * scale, "{name}: one connected piece");

@@ -4,7 +4,7 @@ mod common;
 
 use common::{masses, orthonormality_error, pencil};
 use mesh_kernel::shapes;
-use mesh_spectral::{eigenpairs, Options};
+use mesh_spectral::{eigenpairs, EigenOptions};
 
 /// The 8 smallest Neumann eigenvalues of the unit disk, (j'_{m,k})^2 with
 /// multiplicity 2 for m > 0 (zeros of J_m' from scipy.special.jnp_zeros):
@@ -26,7 +26,7 @@ fn neumann_disk_eigenvalues_converge_under_refinement() {
     for rings in [8, 16, 32] {
         let mesh = shapes::disk(rings, 3).unwrap();
         let (l, m) = pencil(&mesh);
-        let pairs = eigenpairs(&l, &m, 8, &Options::default()).unwrap();
+        let pairs = eigenpairs(&l, &m, 8, &EigenOptions::default()).unwrap();
         assert!(pairs.values[0].abs() < 1e-9);
         let error = (1..8).map(|j| (pairs.values[j] - NEUMANN[j]).abs() / NEUMANN[j]).fold(0.0, f64::max);
         assert!(pairs.residuals.iter().all(|r| *r <= 1e-8), "{:?}", pairs.residuals);

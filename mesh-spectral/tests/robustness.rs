@@ -5,9 +5,8 @@ mod common;
 
 use common::{clusters, data_mesh, masses, orthonormality_error, pencil, union};
 use mesh_kernel::glam::DVec3;
-use mesh_kernel::operators::mass::diagonal;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{eigenpairs, HarmonicsOptions, LaplacianKind, ManifoldHarmonics, Options, SpectralError};
+use mesh_spectral::{eigenpairs, EigenOptions, HarmonicsOptions, LaplacianKind, ManifoldHarmonics, SpectralError};
 use proptest::prelude::*;
 
 fn finite(pairs: &mesh_spectral::Eigenpairs) -> bool {
@@ -22,7 +21,7 @@ fn identical_pieces_repeat_every_eigenvalue() {
     b.positions_mut().iter_mut().for_each(|p| *p += DVec3::new(5.0, 0.0, 0.0));
     let two = union(&a, &b);
     let (l, m) = pencil(&two);
-    let pairs = eigenpairs(&l, &m, 8, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &m, 8, &EigenOptions::default()).unwrap();
     // 0 twice (one constant per piece), then 2 six times.
     assert_eq!(clusters(&pairs.values, 1e-9), vec![2, 6], "{:?}", pairs.values);
     assert_eq!(pairs.stats.components, 2);
@@ -42,7 +41,7 @@ fn many_small_pieces_give_zero_once_per_piece() {
     }
     let mesh = TriMesh::new(p, f).unwrap();
     let (l, m) = pencil(&mesh);
-    let pairs = eigenpairs(&l, &m, 25, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &m, 25, &EigenOptions::default()).unwrap();
     assert!(pairs.values[..20].iter().all(|v| v.abs() < 1e-12), "{:?}", pairs.values);
     assert!(pairs.values[20] > 1.0);
     assert!(finite(&pairs));
@@ -52,13 +51,13 @@ fn many_small_pieces_give_zero_once_per_piece() {
 fn isolated_vertices_are_excluded_not_nan() {
     let sphere = shapes::icosphere(3).unwrap();
     let (l0, m0) = pencil(&sphere);
-    let reference = eigenpairs(&l0, &m0, 10, &Options::default()).unwrap();
+    let reference = eigenpairs(&l0, &m0, 10, &EigenOptions::default()).unwrap();
     let mut p = sphere.positions().to_vec();
     let n = p.len();
     p.extend([DVec3::splat(9.0), DVec3::splat(-9.0)]);
     let mesh = TriMesh::new(p, sphere.faces().to_vec()).unwrap();
     let (l, m) = pencil(&mesh);
-    let pairs = eigenpairs(&l, &m, 10, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &m, 10, &EigenOptions::default()).unwrap();
     assert_eq!(pairs.excluded, vec![n, n + 1]);
     assert!(finite(&pairs));
     for j in 0..10 {
@@ -79,7 +78,7 @@ fn zero_area_faces_are_handled() {
         let options = HarmonicsOptions { laplacian, ..HarmonicsOptions::default() };
         let (l, mass) = ManifoldHarmonics::operators(&mesh, &options).unwrap();
         let available = mass.iter().filter(|m| **m > 0.0).count();
-        let pairs = eigenpairs(&l, &diagonal(mass), available, &Options::default()).unwrap();
+        let pairs = eigenpairs(&l, &mass, available, &EigenOptions::default()).unwrap();
         assert!(finite(&pairs), "{laplacian:?}");
         assert!(pairs.values[0].abs() < 1e-9);
         assert!(pairs.residuals.iter().all(|r| *r < 1e-8), "{laplacian:?}: {:?}", pairs.residuals);
@@ -98,8 +97,8 @@ fn zero_mass_vertices_coupled_by_the_laplacian_get_the_harmonic_extension() {
         mass[v] = 0.0;
     }
     for dense_threshold in [0, 10_000] {
-        let o = Options { dense_threshold, ..Options::default() };
-        let pairs = eigenpairs(&l, &diagonal(mass.clone()), 6, &o).unwrap();
+        let o = EigenOptions { dense_threshold, ..EigenOptions::default() };
+        let pairs = eigenpairs(&l, &mass, 6, &o).unwrap();
         assert!(finite(&pairs));
         for j in 0..6 {
             let x = pairs.vector(j);
@@ -121,7 +120,7 @@ fn non_manifold_input_is_solved() {
     let mesh = TriMesh::new(p, f).unwrap();
     assert!(!mesh.connectivity().is_manifold());
     let (l, m) = pencil(&mesh);
-    let pairs = eigenpairs(&l, &m, 8, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &m, 8, &EigenOptions::default()).unwrap();
     assert!(finite(&pairs));
     assert!(pairs.values[0].abs() < 1e-12);
 }
@@ -131,36 +130,36 @@ fn bad_arguments_are_typed_errors() {
     let mesh = shapes::icosphere(1).unwrap();
     let (l, m) = pencil(&mesh);
     let n = mesh.vertex_count();
-    assert!(matches!(eigenpairs(&l, &m, 0, &Options::default()), Err(SpectralError::InvalidOption { .. })));
+    assert!(matches!(eigenpairs(&l, &m, 0, &EigenOptions::default()), Err(SpectralError::InvalidOption { .. })));
     assert!(matches!(
-        eigenpairs(&l, &m, n + 1, &Options::default()),
+        eigenpairs(&l, &m, n + 1, &EigenOptions::default()),
         Err(SpectralError::TooManyPairs { requested, available }) if requested == n + 1 && available == n
     ));
-    let bad = Options { tolerance: f64::NAN, ..Options::default() };
+    let bad = EigenOptions { tolerance: f64::NAN, ..EigenOptions::default() };
     assert!(eigenpairs(&l, &m, 3, &bad).is_err());
-    let bad = Options { shift: Some(f64::INFINITY), ..Options::default() };
+    let bad = EigenOptions { shift: Some(f64::INFINITY), ..EigenOptions::default() };
     assert!(eigenpairs(&l, &m, 3, &bad).is_err());
-    let bad = Options { block_size: Some(0), ..Options::default() };
+    let bad = EigenOptions { block_size: Some(0), ..EigenOptions::default() };
     assert!(eigenpairs(&l, &m, 3, &bad).is_err());
     // A shift above the spectrum cannot be factored: an error, not garbage.
     let big = shapes::icosphere(3).unwrap();
     let (lb, mb) = pencil(&big);
-    let above = Options { shift: Some(3.0), dense_threshold: 0, ..Options::default() };
+    let above = EigenOptions { shift: Some(3.0), dense_threshold: 0, ..EigenOptions::default() };
     assert!(eigenpairs(&lb, &mb, 3, &above).is_err());
     // All pairs of a small mesh: the dense path.
-    let all = eigenpairs(&l, &m, n, &Options::default()).unwrap();
+    let all = eigenpairs(&l, &m, n, &EigenOptions::default()).unwrap();
     assert_eq!(all.len(), n);
     assert!(all.residuals.iter().all(|r| *r < 1e-8));
     // Matrices of the wrong shape or content.
     let nan = l.map(|v| if *v > 0.0 { f64::NAN } else { *v });
-    assert!(matches!(eigenpairs(&nan, &m, 3, &Options::default()), Err(SpectralError::InvalidMatrix { .. })));
-    let small = diagonal(vec![1.0; n - 1]);
-    assert!(matches!(eigenpairs(&l, &small, 3, &Options::default()), Err(SpectralError::Dimension(_))));
+    assert!(matches!(eigenpairs(&nan, &m, 3, &EigenOptions::default()), Err(SpectralError::InvalidMatrix { .. })));
+    let small = vec![1.0; n - 1];
+    assert!(matches!(eigenpairs(&l, &small, 3, &EigenOptions::default()), Err(SpectralError::Dimension(_))));
     // Only zero-area faces: nothing carries mass.
     let flat = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)], vec![[0, 1, 2]]).unwrap();
     let (lf, mf) = pencil(&flat);
     assert!(matches!(
-        eigenpairs(&lf, &mf, 1, &Options::default()),
+        eigenpairs(&lf, &mf, 1, &EigenOptions::default()),
         Err(SpectralError::TooManyPairs { available: 0, .. })
     ));
 }
@@ -191,8 +190,8 @@ proptest! {
     fn krylov_matches_dense_on_random_surfaces(nx in 14usize..22, ny in 14usize..22, k in 1usize..14, seed in 0u64..1000) {
         let mesh = jittered_grid(nx, ny, seed);
         let (l, m) = pencil(&mesh);
-        let dense = eigenpairs(&l, &m, k, &Options { dense_threshold: 10_000, ..Options::default() }).unwrap();
-        let krylov = eigenpairs(&l, &m, k, &Options { dense_threshold: 0, ..Options::default() }).unwrap();
+        let dense = eigenpairs(&l, &m, k, &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() }).unwrap();
+        let krylov = eigenpairs(&l, &m, k, &EigenOptions { dense_threshold: 0, ..EigenOptions::default() }).unwrap();
         let mass = masses(&mesh);
         for pairs in [&dense, &krylov] {
             prop_assert!(pairs.values.windows(2).all(|w| w[0] <= w[1]));

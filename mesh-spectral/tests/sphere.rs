@@ -5,7 +5,7 @@ mod common;
 
 use common::{clusters, masses, orthonormality_error, pencil};
 use mesh_kernel::shapes;
-use mesh_spectral::{eigenpairs, Method, Options};
+use mesh_spectral::{eigenpairs, EigenOptions, EigenSolver};
 
 /// Reference eigenvalues of `tests/fixtures/icosphere_scipy.txt` for `level`.
 fn scipy_reference(level: u32) -> Vec<f64> {
@@ -35,8 +35,8 @@ fn icosphere_spectrum_groups_every_copy_and_matches_scipy() {
     for level in [4, 5] {
         let mesh = shapes::icosphere(level).unwrap();
         let (l, m) = pencil(&mesh);
-        let pairs = eigenpairs(&l, &m, 25, &Options::default()).unwrap();
-        assert_eq!(pairs.stats.method, Method::BlockKrylovSchur);
+        let pairs = eigenpairs(&l, &m, 25, &EigenOptions::default()).unwrap();
+        assert_eq!(pairs.stats.method, EigenSolver::BlockKrylovSchur);
         // Groups 0 | 2 (x3) | 6 (x5) | 12 (x7) | 20 (x9): every copy present.
         let groups: Vec<usize> = {
             let mut sizes = vec![0usize; 5];
@@ -83,7 +83,7 @@ fn exact_icosahedral_multiplicities_are_all_found() {
     // exactly degenerate copies (here the 5 below the 4); l = 2 stays five-fold.
     let mesh = shapes::icosphere(3).unwrap();
     let (l, m) = pencil(&mesh);
-    let pairs = eigenpairs(&l, &m, 25, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &m, 25, &EigenOptions::default()).unwrap();
     assert_eq!(clusters(&pairs.values, 1e-9), vec![1, 3, 5, 3, 4, 5, 4], "{:?}", pairs.values);
 }
 
@@ -93,7 +93,7 @@ fn first_harmonics_span_the_coordinate_functions() {
     let mesh = shapes::icosphere(4).unwrap();
     let (l, m) = pencil(&mesh);
     let mass = masses(&mesh);
-    let pairs = eigenpairs(&l, &m, 4, &Options::default()).unwrap();
+    let pairs = eigenpairs(&l, &m, 4, &EigenOptions::default()).unwrap();
     for axis in 0..3 {
         let f: Vec<f64> = mesh.positions().iter().map(|p| p[axis]).collect();
         let norm2: f64 = f.iter().zip(&mass).map(|(x, m)| x * x * m).sum();
@@ -110,10 +110,10 @@ fn first_harmonics_span_the_coordinate_functions() {
 fn dense_and_block_krylov_agree() {
     let mesh = shapes::icosphere(3).unwrap();
     let (l, m) = pencil(&mesh);
-    let dense = eigenpairs(&l, &m, 30, &Options { dense_threshold: 10_000, ..Options::default() }).unwrap();
-    let krylov = eigenpairs(&l, &m, 30, &Options { dense_threshold: 0, ..Options::default() }).unwrap();
-    assert_eq!(dense.stats.method, Method::Dense);
-    assert_eq!(krylov.stats.method, Method::BlockKrylovSchur);
+    let dense = eigenpairs(&l, &m, 30, &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() }).unwrap();
+    let krylov = eigenpairs(&l, &m, 30, &EigenOptions { dense_threshold: 0, ..EigenOptions::default() }).unwrap();
+    assert_eq!(dense.stats.method, EigenSolver::Dense);
+    assert_eq!(krylov.stats.method, EigenSolver::BlockKrylovSchur);
     for (a, b) in dense.values.iter().zip(&krylov.values) {
         assert!((a - b).abs() <= 1e-10 * (1.0 + a.abs()), "{a} vs {b}");
     }
@@ -124,7 +124,7 @@ fn dense_and_block_krylov_agree() {
 fn results_are_deterministic() {
     let mesh = shapes::icosphere(3).unwrap();
     let (l, m) = pencil(&mesh);
-    let o = Options { dense_threshold: 0, ..Options::default() };
+    let o = EigenOptions { dense_threshold: 0, ..EigenOptions::default() };
     let a = eigenpairs(&l, &m, 12, &o).unwrap();
     let b = eigenpairs(&l, &m, 12, &o).unwrap();
     assert_eq!(a.values, b.values);

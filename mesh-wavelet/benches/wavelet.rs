@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
 use mesh_kernel::{glam::DVec3, shapes, TriMesh};
-use mesh_wavelet::{detect, subdivide, FilterBank, Multiresolution, Scheme, WaveletKind};
+use mesh_wavelet::{detect, subdivide, FilterBank, Multiresolution, Scheme, SubdivideOptions, WaveletKind};
 
 /// A copy without cached connectivity.
 fn fresh(m: &TriMesh) -> TriMesh {
@@ -21,7 +21,10 @@ fn semi_regular() -> Vec<(String, TriMesh)> {
     let mut v: Vec<(String, TriMesh)> =
         (3..=7).map(|l| (format!("icosphere{l}"), shapes::icosphere(l).expect("icosphere"))).collect();
     let torus = shapes::torus(2.0, 0.5, 22, 11).expect("torus");
-    v.push(("torus-1e6".into(), subdivide(&torus, Scheme::Midpoint, 6).expect("subdivide")));
+    v.push((
+        "torus-1e6".into(),
+        subdivide(&torus, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 6 }).expect("subdivide"),
+    ));
     v
 }
 
@@ -47,7 +50,7 @@ fn subdivision(c: &mut Criterion) {
             group.bench_with_input(BenchmarkId::new(scheme.name(), name), mesh, |b, m| {
                 b.iter_batched(
                     || fresh(m),
-                    |m| black_box(subdivide(&m, scheme, 1).expect("subdivide")),
+                    |m| black_box(subdivide(&m, &SubdivideOptions { scheme, levels: 1 }).expect("subdivide")),
                     BatchSize::LargeInput,
                 )
             });

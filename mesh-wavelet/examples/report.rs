@@ -6,7 +6,7 @@
 use std::sync::Arc;
 
 use mesh_kernel::{glam::DVec3, shapes, TriMesh};
-use mesh_wavelet::{decay_rate, FilterBank, Multiresolution, Scheme, WaveletKind};
+use mesh_wavelet::{decay_rate, FilterBank, Multiresolution, Scheme, SubdivideOptions, WaveletKind};
 
 /// The icosahedron split `levels` times with new vertices on the unit sphere.
 fn sphere(levels: u32) -> TriMesh {
@@ -16,7 +16,7 @@ fn sphere(levels: u32) -> TriMesh {
 /// A torus base mesh split `levels` times, vertices projected onto the exact torus.
 fn torus(levels: usize) -> TriMesh {
     let base = shapes::torus(2.0, 0.5, 12, 6).unwrap();
-    let fine = mesh_wavelet::subdivide(&base, Scheme::Midpoint, levels).unwrap();
+    let fine = mesh_wavelet::subdivide(&base, &SubdivideOptions { scheme: Scheme::Midpoint, levels }).unwrap();
     let p = fine
         .positions()
         .iter()

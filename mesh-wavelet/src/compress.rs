@@ -11,18 +11,19 @@ use crate::multires::Multiresolution;
 pub struct CompressOptions {
     /// Fraction of the wavelet coefficients to keep, in [0, 1] (the base
     /// mesh is always kept). Default 0.1.
-    pub keep: f64,
+    pub keep_fraction: f64,
 }
 
 impl Default for CompressOptions {
     fn default() -> Self {
-        Self { keep: 0.1 }
+        Self { keep_fraction: 0.1 }
     }
 }
 
 /// A thresholded representation and its error against the original.
 #[derive(Debug, Clone)]
-pub struct Compression {
+#[non_exhaustive]
+pub struct WaveletCompression {
     /// The representation with the dropped coefficients set to zero.
     pub multiresolution: Multiresolution,
     /// Number of wavelet coefficients (one 3-vector per odd vertex).
@@ -38,9 +39,10 @@ pub struct Compression {
 
 /// One point of a compression curve (see [`Multiresolution::compression_curve`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CompressionPoint {
+#[non_exhaustive]
+pub struct WaveletCompressionPoint {
     /// Requested fraction.
-    pub keep: f64,
+    pub keep_fraction: f64,
     /// Coefficients kept.
     pub kept_coefficients: usize,
     /// Relative RMS vertex error.
@@ -66,19 +68,19 @@ impl Multiresolution {
         scored
     }
 
-    /// Keeps the `round(keep * total)` coefficients of largest score (see
+    /// Keeps the `round(keep_fraction * total)` coefficients of largest score (see
     /// [`CompressOptions`]) and reports the error of the reconstruction
     /// against this representation's own synthesis. Cost O(n) (selection by
     /// quickselect).
     ///
     /// # Errors
-    /// `WaveletError::InvalidOption` (`keep`) when `options.keep` is not a fraction in [0, 1];
+    /// `WaveletError::InvalidOption` (`keep_fraction`) when `options.keep_fraction` is not a fraction in [0, 1];
     /// `WaveletError::Mesh` if a synthesized level does not make a valid mesh (non-finite positions).
-    pub fn compress(&self, options: &CompressOptions) -> Result<Compression> {
-        check_fraction(options.keep)?;
+    pub fn compress(&self, options: &CompressOptions) -> Result<WaveletCompression> {
+        check_fraction(options.keep_fraction)?;
         let mut scored = self.scored_coefficients();
         let total = scored.len();
-        let kept = ((options.keep * total as f64).round() as usize).min(total);
+        let kept = ((options.keep_fraction * total as f64).round() as usize).min(total);
         if kept < total && kept > 0 {
             scored.select_nth_unstable_by(kept - 1, by_score);
         }
@@ -91,16 +93,22 @@ impl Multiresolution {
         multiresolution.replace_data(data)?;
         let approx = multiresolution.synthesize()?;
         let (rms_error, max_error) = relative_errors(reference.positions(), approx.positions(), &reference);
-        Ok(Compression { multiresolution, total_coefficients: total, kept_coefficients: kept, rms_error, max_error })
+        Ok(WaveletCompression {
+            multiresolution,
+            total_coefficients: total,
+            kept_coefficients: kept,
+            rms_error,
+            max_error,
+        })
     }
 
     /// Errors for several kept fractions at once, sharing one sort of the
     /// coefficients. Cost O(n log n + k n) for k fractions.
     ///
     /// # Errors
-    /// `WaveletError::InvalidOption` (`keep`) when a fraction is not in [0, 1]; `WaveletError::Mesh` if a
+    /// `WaveletError::InvalidOption` (`keep_fraction`) when a fraction is not in [0, 1]; `WaveletError::Mesh` if a
     /// synthesized level does not make a valid mesh.
-    pub fn compression_curve(&self, fractions: &[f64]) -> Result<Vec<CompressionPoint>> {
+    pub fn compression_curve(&self, fractions: &[f64]) -> Result<Vec<WaveletCompressionPoint>> {
         for &f in fractions {
             check_fraction(f)?;
         }
@@ -110,15 +118,15 @@ impl Multiresolution {
         let total = scored.len();
         fractions
             .iter()
-            .map(|&keep| {
-                let kept = ((keep * total as f64).round() as usize).min(total);
+            .map(|&keep_fraction| {
+                let kept = ((keep_fraction * total as f64).round() as usize).min(total);
                 let mut data = self.data().to_vec();
                 for &(_, i) in &scored[kept..] {
                     data[i as usize] = DVec3::ZERO;
                 }
                 let approx = self.synthesize_data(data)?;
                 let (rms_error, max_error) = relative_errors(reference.positions(), approx.positions(), &reference);
-                Ok(CompressionPoint { keep, kept_coefficients: kept, rms_error, max_error })
+                Ok(WaveletCompressionPoint { keep_fraction, kept_coefficients: kept, rms_error, max_error })
             })
             .collect()
     }
@@ -132,7 +140,10 @@ fn by_score(a: &(f64, u32), b: &(f64, u32)) -> std::cmp::Ordering {
 
 fn check_fraction(f: f64) -> Result<()> {
     if !(0.0..=1.0).contains(&f) {
-        return Err(WaveletError::InvalidOption { name: "keep", reason: format!("{f} is not a fraction in [0, 1]") });
+        return Err(WaveletError::InvalidOption {
+            name: "keep_fraction",
+            reason: format!("{f} is not a fraction in [0, 1]"),
+        });
     }
     Ok(())
 }

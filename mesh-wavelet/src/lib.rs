@@ -23,12 +23,12 @@
 //! the least-squares weights of the lifted wavelet.
 //!
 //! ```
-//! use mesh_wavelet::{subdivide, Multiresolution, Options, Scheme, CompressOptions};
+//! use mesh_wavelet::{subdivide, CompressOptions, Multiresolution, MultiresOptions, Scheme, SubdivideOptions};
 //! use mesh_kernel::shapes;
 //!
 //! // A semi-regular mesh: the icosahedron split 3 times, new vertices on the sphere.
 //! let sphere = shapes::icosphere(3)?;
-//! let mr = Multiresolution::analyze(&sphere, &Options::default())?; // detects K^0..K^3
+//! let mr = Multiresolution::analyze(&sphere, &MultiresOptions::default())?; // detects K^0..K^3
 //! assert_eq!((mr.levels(), mr.level(0)?.vertex_count()), (3, 12));
 //!
 //! // Analysis then synthesis returns the input.
@@ -37,11 +37,11 @@
 //! assert!(err < 1e-12);
 //!
 //! // Keep 20% of the coefficients.
-//! let c = mr.compress(&CompressOptions { keep: 0.2 })?;
+//! let c = mr.compress(&CompressOptions { keep_fraction: 0.2 })?;
 //! assert!(c.rms_error < 1e-2);
 //!
 //! // Loop subdivision of the icosahedron.
-//! let smooth = subdivide(&shapes::icosphere(0)?, Scheme::Loop, 2)?;
+//! let smooth = subdivide(&shapes::icosphere(0)?, &SubdivideOptions { scheme: Scheme::Loop, levels: 2 })?;
 //! assert_eq!(smooth.vertex_count(), 162);
 //! # Ok::<(), mesh_wavelet::WaveletError>(())
 //! ```
@@ -63,17 +63,19 @@ pub mod subdivide;
 mod topology;
 mod update;
 
-pub use compress::{CompressOptions, Compression, CompressionPoint};
+pub use compress::{CompressOptions, WaveletCompression, WaveletCompressionPoint};
 pub use detect::{detect, DetectOptions};
-pub use error::{Result, WaveletError};
+pub use error::WaveletError;
 pub use filter::{Coefficient, FilterBank, LevelFilter};
 pub use hierarchy::Hierarchy;
 pub use matrices::{inner_product_matrix, FilterMatrices};
-pub use multires::{decay_rate, LevelStatistics, Multiresolution, Options};
+pub use multires::{decay_rate, LevelStatistics, MultiresOptions, Multiresolution};
 pub use scheme::{Scheme, WaveletKind};
-pub use subdivide::subdivide;
+pub use subdivide::{subdivide, SubdivideOptions};
 
 pub use glam;
+/// The data model this crate works on, so that one dependency line is enough.
+pub use mesh_kernel;
 
 /// The README's example, compiled and run as a doc-test.
 #[cfg(doctest)]

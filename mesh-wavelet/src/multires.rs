@@ -15,7 +15,7 @@ use crate::scheme::{Scheme, WaveletKind};
 
 /// Options of [`Multiresolution::analyze`].
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Options {
+pub struct MultiresOptions {
     /// Refinement scheme, the predictor of the filter bank. Default: midpoint
     /// (Lounsbery's piecewise-linear wavelets).
     pub scheme: Scheme,
@@ -25,7 +25,7 @@ pub struct Options {
     pub max_levels: usize,
 }
 
-impl Default for Options {
+impl Default for MultiresOptions {
     fn default() -> Self {
         Self { scheme: Scheme::Midpoint, wavelet: WaveletKind::Lifted, max_levels: DetectOptions::default().max_levels }
     }
@@ -33,6 +33,7 @@ impl Default for Options {
 
 /// Magnitudes of the wavelet coefficients of one level.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct LevelStatistics {
     /// The level j of `w^j` (coefficients between K^j and K^{j+1}).
     pub level: usize,
@@ -68,7 +69,7 @@ impl Multiresolution {
     /// # Errors
     /// The errors of `detect` (`WaveletError::InvalidOption` for `max_levels` 0, `MeshError::Empty`,
     /// `MeshError::NonManifold`, `WaveletError::NoSubdivisionConnectivity`).
-    pub fn analyze(mesh: &TriMesh, options: &Options) -> Result<Self> {
+    pub fn analyze(mesh: &TriMesh, options: &MultiresOptions) -> Result<Self> {
         let hierarchy = detect(mesh, &DetectOptions { max_levels: options.max_levels })?;
         let bank = FilterBank::new(&hierarchy, options.scheme, options.wavelet)?;
         Self::from_parts(Arc::new(hierarchy), Arc::new(bank), mesh.positions())

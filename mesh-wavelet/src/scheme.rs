@@ -1,10 +1,5 @@
 //! Names of the refinement schemes and of the wavelet constructions.
 
-use std::fmt;
-use std::str::FromStr;
-
-use crate::error::WaveletError;
-
 /// A refinement rule for 4-to-1 splitting K^j -> K^{j+1} (the chapter's figure 2.13).
 ///
 /// Every scheme inserts one vertex per edge and splits each triangle into
@@ -12,6 +7,7 @@ use crate::error::WaveletError;
 /// the scheme fixes the scaling functions: synthesis with all wavelet
 /// coefficients zero is exactly this subdivision scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
 pub enum Scheme {
     /// Midpoint (linear) splitting: new vertices at edge midpoints, old ones
     /// fixed. Its scaling functions are the hat functions of the chapter, so the
@@ -33,10 +29,11 @@ pub enum Scheme {
 }
 
 impl Scheme {
-    /// All schemes, for loops in tests and command-line help.
+    /// Every scheme; their [`name`](Self::name)s are what [`FromStr`](std::str::FromStr) accepts
+    /// and [`Display`](std::fmt::Display) writes.
     pub const ALL: [Scheme; 3] = [Scheme::Midpoint, Scheme::Loop, Scheme::Butterfly];
 
-    /// The lower-case name used on the command line.
+    /// The name used on the command line: `midpoint`, `loop`, `butterfly`.
     pub fn name(self) -> &'static str {
         match self {
             Scheme::Midpoint => "midpoint",
@@ -51,27 +48,7 @@ impl Scheme {
     }
 }
 
-impl fmt::Display for Scheme {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Scheme {
-    type Err = WaveletError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.to_ascii_lowercase().as_str() {
-            "midpoint" | "linear" => Ok(Scheme::Midpoint),
-            "loop" => Ok(Scheme::Loop),
-            "butterfly" | "modified-butterfly" => Ok(Scheme::Butterfly),
-            _ => Err(WaveletError::InvalidOption {
-                name: "scheme",
-                reason: format!("unknown scheme `{s}`; known: midpoint, loop, butterfly"),
-            }),
-        }
-    }
-}
+crate::error::named_enum!(Scheme, "scheme");
 
 /// Which wavelets complement the scaling functions of a [`Scheme`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -90,7 +67,11 @@ pub enum WaveletKind {
 }
 
 impl WaveletKind {
-    /// The lower-case name used on the command line.
+    /// Both kinds; their [`name`](Self::name)s are what [`FromStr`](std::str::FromStr) accepts
+    /// and [`Display`](std::fmt::Display) writes.
+    pub const ALL: [WaveletKind; 2] = [WaveletKind::Lazy, WaveletKind::Lifted];
+
+    /// The name used on the command line: `lazy`, `lifted`.
     pub fn name(self) -> &'static str {
         match self {
             WaveletKind::Lazy => "lazy",
@@ -99,23 +80,4 @@ impl WaveletKind {
     }
 }
 
-impl fmt::Display for WaveletKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for WaveletKind {
-    type Err = WaveletError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.to_ascii_lowercase().as_str() {
-            "lazy" => Ok(WaveletKind::Lazy),
-            "lifted" => Ok(WaveletKind::Lifted),
-            _ => Err(WaveletError::InvalidOption {
-                name: "wavelet",
-                reason: format!("unknown wavelet `{s}`; known: lazy, lifted"),
-            }),
-        }
-    }
-}
+crate::error::named_enum!(WaveletKind, "wavelet");

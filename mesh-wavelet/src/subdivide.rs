@@ -9,8 +9,23 @@ use crate::rules::{self, Scratch};
 use crate::scheme::Scheme;
 use crate::topology::{manifold_topology, Topology};
 
-/// Splits every triangle of `mesh` into four, `levels` times, placing the
-/// vertices with `scheme`.
+/// Options of [`subdivide`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SubdivideOptions {
+    /// How new vertices are placed (and old ones moved). Default: Loop.
+    pub scheme: Scheme,
+    /// How many times every triangle is split into four. Default: 1.
+    pub levels: usize,
+}
+
+impl Default for SubdivideOptions {
+    fn default() -> Self {
+        Self { scheme: Scheme::Loop, levels: 1 }
+    }
+}
+
+/// Splits every triangle of `mesh` into four, [`SubdivideOptions::levels`]
+/// times, placing the vertices with [`SubdivideOptions::scheme`].
 ///
 /// Output order (that of [`mesh_kernel::shapes::midpoint_subdivide`] at every
 /// level): the old vertices first, in their order, then one new vertex per
@@ -27,7 +42,8 @@ use crate::topology::{manifold_topology, Topology};
 /// # Errors
 /// `MeshError::Empty` without faces; `WaveletError::InvalidOption` (`levels`) when the result would exceed
 /// `MAX_FACES`; `MeshError::NonManifold` for Loop and butterfly on a mesh that is not an oriented manifold.
-pub fn subdivide(mesh: &TriMesh, scheme: Scheme, levels: usize) -> Result<TriMesh> {
+pub fn subdivide(mesh: &TriMesh, options: &SubdivideOptions) -> Result<TriMesh> {
+    let SubdivideOptions { scheme, levels } = *options;
     if mesh.face_count() == 0 {
         return Err(MeshError::Empty.into());
     }

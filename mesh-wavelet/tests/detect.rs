@@ -7,7 +7,8 @@ mod common;
 use common::{base_meshes, real_mesh, relative_max_distance, shuffled, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
 use mesh_wavelet::{
-    detect, subdivide, DetectOptions, Hierarchy, Multiresolution, Options, Scheme, WaveletError, WaveletKind,
+    detect, subdivide, DetectOptions, Hierarchy, MultiresOptions, Multiresolution, Scheme, SubdivideOptions,
+    WaveletError, WaveletKind,
 };
 use proptest::prelude::*;
 
@@ -43,7 +44,7 @@ const ALL_REGULAR: [&str; 2] = ["torus", "cylinder"];
 fn recovers_base_mesh_and_levels_after_shuffling() {
     for (name, base) in base_meshes() {
         for levels in 1..=3 {
-            let fine = subdivide(&base, Scheme::Midpoint, levels).unwrap();
+            let fine = subdivide(&base, &SubdivideOptions { scheme: Scheme::Midpoint, levels }).unwrap();
             let (mesh, new_index) = shuffled(&fine, 7 + levels as u64);
             let h = detect(&mesh, &DetectOptions::default()).unwrap();
             assert_reproduces(&h, &mesh);
@@ -85,14 +86,15 @@ fn file_round_trip_subdivide_shuffle_detect_analyze_synthesize() {
     let dir = tempfile::tempdir().unwrap();
     for (name, base) in base_meshes() {
         for scheme in Scheme::ALL {
-            let fine = subdivide(&base, scheme, 3).unwrap();
+            let fine = subdivide(&base, &SubdivideOptions { scheme, levels: 3 }).unwrap();
             let (mesh, _) = shuffled(&fine, 99);
             let path = dir.path().join(format!("{}-{scheme}.obj", name.replace(' ', "_")));
             mesh_io::write(&path, &mesh, &Default::default()).unwrap();
             let read = mesh_io::read(&path).unwrap().mesh;
             assert_eq!(read.faces(), mesh.faces());
             for wavelet in [WaveletKind::Lazy, WaveletKind::Lifted] {
-                let mr = Multiresolution::analyze(&read, &Options { scheme, wavelet, ..Default::default() }).unwrap();
+                let mr = Multiresolution::analyze(&read, &MultiresOptions { scheme, wavelet, ..Default::default() })
+                    .unwrap();
                 assert!(mr.levels() >= 3 && (mr.levels() == 3 || ALL_REGULAR.contains(&name)), "{name}");
                 let back = mr.synthesize().unwrap();
                 assert_eq!(back.faces(), read.faces(), "{name}: faces in input order");
@@ -138,14 +140,15 @@ fn meshes_without_subdivision_connectivity_say_so() {
             Err(WaveletError::NoSubdivisionConnectivity { reason }) => assert!(!reason.is_empty()),
             other => panic!("{name}: {other:?}"),
         }
-        let e = Multiresolution::analyze(&m, &Options::default()).unwrap_err();
+        let e = Multiresolution::analyze(&m, &MultiresOptions::default()).unwrap_err();
         assert!(e.to_string().contains("no subdivision connectivity"), "{e}");
     }
     // A uv sphere has poles of high valence and no 4-to-1 structure.
     let uv = shapes::uv_sphere(1.0, 16, 8).unwrap();
     assert!(matches!(detect(&uv, &Default::default()), Err(WaveletError::NoSubdivisionConnectivity { .. })));
     // One flipped diagonal breaks it.
-    let fine = subdivide(&shapes::icosphere(0).unwrap(), Scheme::Midpoint, 2).unwrap();
+    let fine =
+        subdivide(&shapes::icosphere(0).unwrap(), &SubdivideOptions { scheme: Scheme::Midpoint, levels: 2 }).unwrap();
     let mut faces = fine.faces().to_vec();
     let c = fine.connectivity();
     let e = (0..c.edge_count())
@@ -179,7 +182,8 @@ fn bad_input_is_a_typed_error() {
     let empty = TriMesh::new(vec![], vec![]).unwrap();
     assert!(matches!(detect(&empty, &Default::default()), Err(WaveletError::Mesh(MeshError::Empty))));
     // An isolated vertex has no place in the hierarchy.
-    let fine = subdivide(&shapes::icosphere(0).unwrap(), Scheme::Midpoint, 1).unwrap();
+    let fine =
+        subdivide(&shapes::icosphere(0).unwrap(), &SubdivideOptions { scheme: Scheme::Midpoint, levels: 1 }).unwrap();
     let mut p = fine.positions().to_vec();
     p.push(DVec3::ONE);
     let with_isolated = TriMesh::new(p, fine.faces().to_vec()).unwrap();
@@ -190,10 +194,10 @@ fn bad_input_is_a_typed_error() {
     assert!(detect(&fine, &DetectOptions { max_levels: 0 }).is_err());
     // Degenerate (zero-area) faces do not matter to a combinatorial test.
     if let Some(deg) = real_mesh("cgal_degtri_sliding.off") {
-        let fine = subdivide(&deg, Scheme::Midpoint, 2).unwrap();
+        let fine = subdivide(&deg, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 2 }).unwrap();
         let h = detect(&fine, &Default::default()).unwrap();
         assert!(h.levels() >= 2);
-        let mr = Multiresolution::analyze(&fine, &Options::default()).unwrap();
+        let mr = Multiresolution::analyze(&fine, &MultiresOptions::default()).unwrap();
         assert!(relative_max_distance(&fine, &mr.synthesize().unwrap()) < 1e-12);
     }
 }
@@ -210,12 +214,12 @@ proptest! {
         let g = shapes::grid(1.0, 1.0, nx, ny).unwrap();
         let p = g.positions().iter().map(|p| *p + DVec3::new(0.0, 0.0, 0.1 * rng.signed())).collect();
         let base = TriMesh::new(p, g.faces().to_vec()).unwrap();
-        let fine = subdivide(&base, Scheme::Loop, levels).unwrap();
+        let fine = subdivide(&base, &SubdivideOptions { scheme: Scheme::Loop, levels }).unwrap();
         let (mesh, _) = shuffled(&fine, seed);
         let h = detect(&mesh, &Default::default()).unwrap();
         assert_reproduces(&h, &mesh);
         prop_assert!(h.levels() >= levels);
-        let mr = Multiresolution::analyze(&mesh, &Options::default()).unwrap();
+        let mr = Multiresolution::analyze(&mesh, &MultiresOptions::default()).unwrap();
         prop_assert!(relative_max_distance(&mesh, &mr.synthesize().unwrap()) < 1e-12);
     }
 }

@@ -6,7 +6,7 @@ mod common;
 
 use common::{base_meshes, real_mesh, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
-use mesh_wavelet::{rules::loop_beta, subdivide, Scheme, WaveletError};
+use mesh_wavelet::{rules::loop_beta, subdivide, Scheme, SubdivideOptions, WaveletError};
 use proptest::prelude::*;
 
 #[test]
@@ -16,7 +16,7 @@ fn counts_topology_and_order() {
         for scheme in Scheme::ALL {
             let mut prev = base.clone();
             for level in 1..=3 {
-                let m = subdivide(&base, scheme, level).unwrap();
+                let m = subdivide(&base, &SubdivideOptions { scheme, levels: level }).unwrap();
                 let (pc, c) = (prev.connectivity(), m.connectivity());
                 assert_eq!(m.vertex_count(), prev.vertex_count() + pc.edge_count(), "{name} {scheme}");
                 assert_eq!(m.face_count(), 4 * prev.face_count());
@@ -30,7 +30,7 @@ fn counts_topology_and_order() {
                 if scheme.is_interpolating() {
                     assert_eq!(&m.positions()[..prev.vertex_count()], prev.positions());
                 }
-                prev = subdivide(&prev, scheme, 1).unwrap();
+                prev = subdivide(&prev, &SubdivideOptions { scheme, levels: 1 }).unwrap();
                 assert_eq!(prev, m, "one level at a time equals {level} levels at once");
             }
         }
@@ -41,7 +41,10 @@ fn counts_topology_and_order() {
 fn midpoint_is_mesh_kernel_midpoint_split() {
     let m = shapes::cube(2).unwrap();
     let (p, f) = shapes::midpoint_subdivide(&m);
-    assert_eq!(subdivide(&m, Scheme::Midpoint, 1).unwrap(), TriMesh::new(p, f).unwrap());
+    assert_eq!(
+        subdivide(&m, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 1 }).unwrap(),
+        TriMesh::new(p, f).unwrap()
+    );
 }
 
 /// A cubic polynomial in (x, y).
@@ -65,7 +68,7 @@ fn butterfly_reproduces_cubics_on_regular_grids() {
     // cubic wherever the regular masks apply.
     let n = 8;
     let m = graph(n, cubic);
-    let s = subdivide(&m, Scheme::Butterfly, 1).unwrap();
+    let s = subdivide(&m, &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 }).unwrap();
     let h = 1.0 / n as f64;
     let mut checked = (0, 0);
     for p in &s.positions()[m.vertex_count()..] {
@@ -87,7 +90,7 @@ fn butterfly_reproduces_cubics_on_regular_grids() {
 #[test]
 fn loop_reproduces_linear_functions_away_from_corners() {
     let m = graph(6, |x, y| 0.5 + 2.0 * x - 3.0 * y);
-    let s = subdivide(&m, Scheme::Loop, 2).unwrap();
+    let s = subdivide(&m, &SubdivideOptions { scheme: Scheme::Loop, levels: 2 }).unwrap();
     let mut checked = 0;
     for p in s.positions() {
         let near_corner = (p.x.min(1.0 - p.x) < 0.3) && (p.y.min(1.0 - p.y) < 0.3);
@@ -115,7 +118,7 @@ fn loop_converges_to_its_limit_positions() {
     let limit = (1.0 - n as f64 * w) * ico.position(v0) + w * sum;
     let mut errors = Vec::new();
     for level in 1..=7 {
-        let s = subdivide(&ico, Scheme::Loop, level).unwrap();
+        let s = subdivide(&ico, &SubdivideOptions { scheme: Scheme::Loop, levels: level }).unwrap();
         errors.push(s.positions()[0].distance(limit));
     }
     let lambda = 3.0 / 8.0 + 0.25 * (std::f64::consts::TAU / n as f64).cos();
@@ -130,7 +133,7 @@ fn loop_converges_to_its_limit_positions() {
     let lp = &loops[0].vertices;
     let (a, b, cc) = (lp[lp.len() - 1], lp[0], lp[1]);
     let limit = (disk.position(a) + 4.0 * disk.position(b) + disk.position(cc)) / 6.0;
-    let s = subdivide(&disk, Scheme::Loop, 8).unwrap();
+    let s = subdivide(&disk, &SubdivideOptions { scheme: Scheme::Loop, levels: 8 }).unwrap();
     assert!(s.positions()[b.idx()].distance(limit) < 1e-5);
 }
 
@@ -140,13 +143,13 @@ fn loop_stays_in_the_bounding_box_of_real_meshes() {
     for name in ["npm_bunny.obj", "cgal_holes.off", "cgal_elephant.off"] {
         let Some(m) = real_mesh(name) else { return };
         let bb = mesh_kernel::geometry::bounding_box(&m).unwrap();
-        let s = subdivide(&m, Scheme::Loop, 1).unwrap();
+        let s = subdivide(&m, &SubdivideOptions { scheme: Scheme::Loop, levels: 1 }).unwrap();
         let c = s.connectivity();
         assert!(c.is_manifold());
         assert_eq!(c.euler_characteristic(), m.connectivity().euler_characteristic());
         let tol = 1e-12 * bb.diagonal();
         assert!(s.positions().iter().all(|p| p.cmpge(bb.min - tol).all() && p.cmple(bb.max + tol).all()), "{name}");
-        let b = subdivide(&m, Scheme::Butterfly, 1).unwrap();
+        let b = subdivide(&m, &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 }).unwrap();
         assert_eq!(&b.positions()[..m.vertex_count()], m.positions());
     }
 }
@@ -155,7 +158,7 @@ fn loop_stays_in_the_bounding_box_of_real_meshes() {
 fn degenerate_and_isolated_input() {
     if let Some(m) = real_mesh("cgal_degtri_sliding.off") {
         for scheme in Scheme::ALL {
-            let s = subdivide(&m, scheme, 3).unwrap();
+            let s = subdivide(&m, &SubdivideOptions { scheme, levels: 3 }).unwrap();
             assert!(s.positions().iter().all(|p| p.is_finite()));
         }
     }
@@ -164,7 +167,7 @@ fn degenerate_and_isolated_input() {
     p.push(DVec3::new(7.0, 8.0, 9.0));
     let m = TriMesh::new(p, shapes::icosphere(0).unwrap().faces().to_vec()).unwrap();
     for scheme in Scheme::ALL {
-        let s = subdivide(&m, scheme, 2).unwrap();
+        let s = subdivide(&m, &SubdivideOptions { scheme, levels: 2 }).unwrap();
         assert_eq!(s.positions()[12], DVec3::new(7.0, 8.0, 9.0));
     }
 }
@@ -177,21 +180,33 @@ fn bad_input_is_a_typed_error() {
     )
     .unwrap();
     for scheme in [Scheme::Loop, Scheme::Butterfly] {
-        match subdivide(&nonmanifold, scheme, 1) {
+        match subdivide(&nonmanifold, &SubdivideOptions { scheme, levels: 1 }) {
             Err(WaveletError::Mesh(MeshError::NonManifold(report))) => assert_eq!(report.edges.len(), 1),
             other => panic!("{other:?}"),
         }
     }
     // The midpoint split is defined on any mesh.
-    assert_eq!(subdivide(&nonmanifold, Scheme::Midpoint, 1).unwrap().face_count(), 12);
+    assert_eq!(
+        subdivide(&nonmanifold, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 1 }).unwrap().face_count(),
+        12
+    );
     let empty = TriMesh::new(vec![DVec3::ZERO], vec![]).unwrap();
-    assert!(matches!(subdivide(&empty, Scheme::Loop, 1), Err(WaveletError::Mesh(MeshError::Empty))));
+    assert!(matches!(
+        subdivide(&empty, &SubdivideOptions { scheme: Scheme::Loop, levels: 1 }),
+        Err(WaveletError::Mesh(MeshError::Empty))
+    ));
     let tri = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
-    assert!(matches!(subdivide(&tri, Scheme::Loop, 20), Err(WaveletError::InvalidOption { .. })));
-    assert!(matches!(subdivide(&tri, Scheme::Loop, usize::MAX), Err(WaveletError::InvalidOption { .. })));
-    assert_eq!(subdivide(&tri, Scheme::Butterfly, 0).unwrap(), tri);
+    assert!(matches!(
+        subdivide(&tri, &SubdivideOptions { scheme: Scheme::Loop, levels: 20 }),
+        Err(WaveletError::InvalidOption { .. })
+    ));
+    assert!(matches!(
+        subdivide(&tri, &SubdivideOptions { scheme: Scheme::Loop, levels: usize::MAX }),
+        Err(WaveletError::InvalidOption { .. })
+    ));
+    assert_eq!(subdivide(&tri, &SubdivideOptions { scheme: Scheme::Butterfly, levels: 0 }).unwrap(), tri);
     for scheme in Scheme::ALL {
-        assert_eq!(subdivide(&tri, scheme, 2).unwrap().face_count(), 16);
+        assert_eq!(subdivide(&tri, &SubdivideOptions { scheme, levels: 2 }).unwrap().face_count(), 16);
     }
 }
 
@@ -208,8 +223,8 @@ proptest! {
         let map = |p: DVec3| cols[0] * p.x + cols[1] * p.y + cols[2] * p.z + cols[3];
         let moved = TriMesh::new(base.positions().iter().map(|&p| map(p)).collect(), base.faces().to_vec()).unwrap();
         for scheme in Scheme::ALL {
-            let a = subdivide(&moved, scheme, 2).unwrap();
-            let b = subdivide(&base, scheme, 2).unwrap();
+            let a = subdivide(&moved, &SubdivideOptions { scheme, levels: 2 }).unwrap();
+            let b = subdivide(&base, &SubdivideOptions { scheme, levels: 2 }).unwrap();
             for (p, q) in a.positions().iter().zip(b.positions()) {
                 prop_assert!(p.distance(map(*q)) < 1e-12);
             }

@@ -10,15 +10,15 @@ use std::sync::Arc;
 use common::{bumpy_sphere, real_mesh, relative_max_distance, shuffled, smooth_torus, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, sprs::CsMat, MeshError, TriMesh};
 use mesh_wavelet::{
-    decay_rate, inner_product_matrix, subdivide, CompressOptions, FilterBank, Hierarchy, Multiresolution, Options,
-    Scheme, WaveletError, WaveletKind,
+    decay_rate, inner_product_matrix, subdivide, CompressOptions, FilterBank, Hierarchy, MultiresOptions,
+    Multiresolution, Scheme, SubdivideOptions, WaveletError, WaveletKind,
 };
 use proptest::prelude::*;
 
 const KINDS: [WaveletKind; 2] = [WaveletKind::Lazy, WaveletKind::Lifted];
 
-fn options(scheme: Scheme, wavelet: WaveletKind) -> Options {
-    Options { scheme, wavelet, ..Default::default() }
+fn options(scheme: Scheme, wavelet: WaveletKind) -> MultiresOptions {
+    MultiresOptions { scheme, wavelet, ..Default::default() }
 }
 
 /// Smooth surfaces with subdivision connectivity, and a real one.
@@ -27,7 +27,10 @@ fn surfaces() -> Vec<(&'static str, TriMesh)> {
         ("sphere", shapes::icosphere(4).unwrap()),
         ("torus", smooth_torus(3)),
         ("bumpy sphere", bumpy_sphere(4)),
-        ("loop disk", subdivide(&shapes::disk(3, 2).unwrap(), Scheme::Loop, 3).unwrap()),
+        (
+            "loop disk",
+            subdivide(&shapes::disk(3, 2).unwrap(), &SubdivideOptions { scheme: Scheme::Loop, levels: 3 }).unwrap(),
+        ),
     ];
     if let Some(m) = real_mesh("cgal_holes.off") {
         v.push(("cgal_holes", m));
@@ -53,7 +56,7 @@ fn analysis_then_synthesis_is_the_identity() {
     for levels in 1..=5 {
         for scheme in Scheme::ALL {
             for wavelet in KINDS {
-                let o = Options { scheme, wavelet, max_levels: levels };
+                let o = MultiresOptions { scheme, wavelet, max_levels: levels };
                 let mr = Multiresolution::analyze(&sphere, &o).unwrap();
                 assert_eq!(mr.levels(), levels);
                 assert!(relative_max_distance(&sphere, &mr.synthesize().unwrap()) < 1e-12);
@@ -122,7 +125,7 @@ fn sparse_matrices_are_biorthogonal_and_match_the_lifting() {
                 // P is the subdivision matrix of the scheme.
                 let m = bank.matrices(0).unwrap();
                 let p = dense(&m.p);
-                let s = subdivide(base, scheme, 1).unwrap();
+                let s = subdivide(base, &SubdivideOptions { scheme, levels: 1 }).unwrap();
                 for (i, row) in p.iter().enumerate() {
                     let v: DVec3 = row.iter().zip(base.positions()).map(|(w, q)| *q * *w).sum();
                     assert!(v.distance(s.positions()[i]) < 1e-13, "{scheme} {wavelet} row {i}");
@@ -239,7 +242,7 @@ fn compression_error_falls_with_the_kept_fraction_and_lifting_helps() {
                 assert!(curve[7].rms_error < 1e-14 && curve[7].max_error < 1e-14);
                 assert!(curve[0].rms_error > curve[1].rms_error);
                 // compress() agrees with the curve.
-                let c = mr.compress(&CompressOptions { keep: 0.1 }).unwrap();
+                let c = mr.compress(&CompressOptions { keep_fraction: 0.1 }).unwrap();
                 assert_eq!(c.kept_coefficients, curve[4].kept_coefficients);
                 assert!((c.rms_error - curve[4].rms_error).abs() <= 1e-12 * curve[4].rms_error.max(1e-300));
                 assert!(c.max_error >= c.rms_error);
@@ -248,10 +251,10 @@ fn compression_error_falls_with_the_kept_fraction_and_lifting_helps() {
             for (lazy, lifted) in curves[0][1..7].iter().zip(&curves[1][1..7]) {
                 println!(
                     "{name} {scheme} keep {}: lazy {:.3e} lifted {:.3e}",
-                    lazy.keep, lazy.rms_error, lifted.rms_error
+                    lazy.keep_fraction, lazy.rms_error, lifted.rms_error
                 );
                 if scheme == Scheme::Midpoint {
-                    assert!(lifted.rms_error < lazy.rms_error, "{name} keep {}", lazy.keep);
+                    assert!(lifted.rms_error < lazy.rms_error, "{name} keep {}", lazy.keep_fraction);
                 }
             }
             let mean_log_ratio: f64 = curves[0][1..7]
@@ -276,7 +279,7 @@ fn a_subdivision_surface_has_no_details_in_its_own_scheme() {
     )
     .unwrap();
     for scheme in Scheme::ALL {
-        let fine = subdivide(&base, scheme, 3).unwrap();
+        let fine = subdivide(&base, &SubdivideOptions { scheme, levels: 3 }).unwrap();
         for wavelet in KINDS {
             let mr = Multiresolution::analyze(&fine, &options(scheme, wavelet)).unwrap();
             assert_eq!(mr.levels(), 3);
@@ -284,7 +287,7 @@ fn a_subdivision_surface_has_no_details_in_its_own_scheme() {
             assert!(largest < 1e-14, "{scheme} {wavelet}: {largest:e}");
             let b = mr.level(0).unwrap();
             assert!(relative_max_distance(&base, &b) < 1e-14);
-            let c = mr.compress(&CompressOptions { keep: 0.0 }).unwrap();
+            let c = mr.compress(&CompressOptions { keep_fraction: 0.0 }).unwrap();
             assert!(c.rms_error < 1e-14);
         }
         // Other schemes do see details.
@@ -356,7 +359,7 @@ fn reconstruction_from_subsets_and_levels_of_detail() {
                 let lod = mr.level(k).unwrap();
                 assert_eq!(lod.vertex_count(), mr.hierarchy().vertex_count(k).unwrap());
                 assert_eq!(lod.faces(), mr.hierarchy().faces(k).unwrap());
-                let refined = subdivide(&lod, scheme, mr.levels() - k).unwrap();
+                let refined = subdivide(&lod, &SubdivideOptions { scheme, levels: mr.levels() - k }).unwrap();
                 assert!(relative_max_distance(&refined, &partial) < 1e-12, "{scheme} {wavelet} k = {k}");
             }
             // Dropping the odd coefficients of one level changes only the
@@ -385,7 +388,7 @@ fn reconstruction_from_subsets_and_levels_of_detail() {
 #[test]
 fn bad_input_is_a_typed_error() {
     let mesh = shapes::icosphere(2).unwrap();
-    let mut mr = Multiresolution::analyze(&mesh, &Options::default()).unwrap();
+    let mut mr = Multiresolution::analyze(&mesh, &MultiresOptions::default()).unwrap();
     assert!(matches!(mr.coefficients(2), Err(WaveletError::LevelOutOfRange { level: 2, levels: 2 })));
     assert!(mr.level(3).is_err());
     assert!(mr.level_positions(7).is_err());
@@ -393,9 +396,9 @@ fn bad_input_is_a_typed_error() {
     let mut nan = mr.level(0).unwrap().positions().to_vec();
     nan[0].x = f64::NAN;
     assert!(matches!(mr.set_base_positions(&nan), Err(WaveletError::Mesh(MeshError::NonFinitePosition { .. }))));
-    for keep in [-0.1, 1.5, f64::NAN] {
-        assert!(matches!(mr.compress(&CompressOptions { keep }), Err(WaveletError::InvalidOption { .. })));
-        assert!(mr.compression_curve(&[keep]).is_err());
+    for keep_fraction in [-0.1, 1.5, f64::NAN] {
+        assert!(matches!(mr.compress(&CompressOptions { keep_fraction }), Err(WaveletError::InvalidOption { .. })));
+        assert!(mr.compression_curve(&[keep_fraction]).is_err());
     }
     mr.coefficients_mut(1).unwrap()[0] = DVec3::splat(f64::INFINITY);
     assert!(mr.synthesize().is_err());
@@ -414,11 +417,11 @@ fn bad_input_is_a_typed_error() {
     )
     .unwrap();
     assert!(matches!(
-        Multiresolution::analyze(&nonmanifold, &Options::default()),
+        Multiresolution::analyze(&nonmanifold, &MultiresOptions::default()),
         Err(WaveletError::Mesh(MeshError::NonManifold(_)))
     ));
     let empty = TriMesh::new(vec![], vec![]).unwrap();
-    assert!(Multiresolution::analyze(&empty, &Options::default()).is_err());
+    assert!(Multiresolution::analyze(&empty, &MultiresOptions::default()).is_err());
 }
 
 proptest! {

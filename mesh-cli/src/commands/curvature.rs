@@ -10,12 +10,13 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use mesh_curvature::{
-    flag_code, pointwise_curvature, CurvatureFlag, Degree, FitOptions, FlagCounts, MassKind, Method, Neighborhood,
-    PointwiseOptions, StatusCounts, TensorOptions,
+    flag_code, pointwise_curvature, CurvatureFlag, FlagCounts, MassKind, Neighborhood, PointwiseOptions, StatusCounts,
+    TensorMethod, TensorOptions,
 };
 use mesh_io::MeshView;
 use serde::Serialize;
 
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{binary_ply, check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
@@ -37,8 +38,9 @@ pub struct Args {
     /// Curvature tensor estimator: fit (quartic jet over the 2-ring, the most
     /// accurate), quadric (libigl-style quadric over the 1-ring),
     /// rusinkiewicz (per-face fit, the fastest) or normal-cycle.
-    #[arg(long, default_value = "fit")]
-    method: String,
+    #[arg(long, default_value_t = TensorMethod::default(),
+          value_parser = choice::<TensorMethod>(TensorMethod::ALL.map(TensorMethod::name)))]
+    method: TensorMethod,
     /// Neighbourhood of the fit or normal cycle as a geodesic ball of this
     /// radius (model units) instead of rings.
     #[arg(long, value_name = "R", conflicts_with = "rings")]
@@ -172,31 +174,17 @@ pub struct Timings {
 
 /// The tensor options from the command line.
 fn tensor_options(args: &Args) -> CliResult<TensorOptions> {
-    let nbh = |default_rings: u32| -> CliResult<Neighborhood> {
-        Ok(match (args.radius, args.rings) {
-            (Some(r), _) => Neighborhood::Ball(r).validate()?,
-            (None, Some(k)) => Neighborhood::Rings(k).validate()?,
-            (None, None) => Neighborhood::Rings(default_rings),
-        })
+    let nbh = match (args.radius, args.rings) {
+        (Some(r), _) => Some(Neighborhood::Ball(r).validate()?),
+        (None, Some(k)) => Some(Neighborhood::Rings(k).validate()?),
+        (None, None) => None,
     };
-    let method = match args.method.as_str() {
-        "fit" => Method::Fit(FitOptions { neighborhood: nbh(2)?, ..FitOptions::default() }),
-        "quadric" => Method::Fit(FitOptions {
-            neighborhood: nbh(1)?,
-            degree: Degree::Quadric,
-            use_normals: false,
-            refine_normal: false,
-        }),
-        "rusinkiewicz" => {
-            if args.radius.is_some() || args.rings.is_some() {
-                return Err("--radius and --rings do not apply to rusinkiewicz (1-ring faces)".into());
-            }
-            Method::Rusinkiewicz
+    let method = match (nbh, args.method.neighborhood()) {
+        (None, _) => args.method,
+        (Some(_), None) => {
+            return Err(format!("--radius and --rings do not apply to {} (1-ring faces)", args.method).into())
         }
-        "normal-cycle" => Method::NormalCycle(nbh(1)?),
-        other => {
-            return Err(format!("unknown --method `{other}`; known: fit, quadric, rusinkiewicz, normal-cycle").into())
-        }
+        (Some(nbh), Some(_)) => args.method.with_neighborhood(nbh)?,
     };
     Ok(TensorOptions { method, ..TensorOptions::default() })
 }
@@ -419,9 +407,12 @@ mod tests {
             v.extend_from_slice(m);
             run(&args(&v)).unwrap_or_else(|e| panic!("{m:?}: {e}"));
         }
+        let magic =
+            crate::commands::try_parse_args::<Args>("curvature", &["--shape", "icosphere", "--method", "magic"]);
+        let message = magic.expect_err("an unknown method is refused").to_string();
+        assert!(message.contains("magic") && message.contains("normal-cycle"), "{message}");
         for bad in [
-            &["--method", "magic"][..],
-            &["--method", "fit", "--rings", "0"],
+            &["--method", "fit", "--rings", "0"][..],
             &["--method", "normal-cycle", "--radius=-1"],
             &["--method", "rusinkiewicz", "--rings", "2"],
             &["--area", "nope"],

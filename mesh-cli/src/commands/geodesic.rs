@@ -20,6 +20,7 @@ use mesh_io::MeshView;
 use mesh_kernel::VertexId;
 use serde::Serialize;
 
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{binary_ply, check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
@@ -34,8 +35,8 @@ pub struct Args {
     /// heat, fmm, dijkstra or exact (exact polyhedral geodesics: oriented
     /// manifolds without zero-area faces, slower; refused with a message
     /// otherwise).
-    #[arg(long, default_value = "heat")]
-    method: String,
+    #[arg(long, default_value_t = Method::Heat, value_parser = choice::<Method>(Method::ALL.map(Method::name)))]
+    method: Method,
     /// Output PLY file: positions as double, per-vertex double `distance`.
     #[arg(long, value_name = "OUT.ply")]
     out: PathBuf,
@@ -56,12 +57,14 @@ pub struct Args {
     /// what double precision resolves (about 1400 mean edge lengths from the
     /// sources): fmm (Fast Marching from the resolved part), restart
     /// (restarted heat flows) or none (flag the vertices `unresolved`).
-    #[arg(long, default_value = "fmm")]
-    far_field: String,
+    #[arg(long, default_value_t = HeatFarField::default(),
+          value_parser = choice::<HeatFarField>(HeatFarField::ALL.map(HeatFarField::name)))]
+    far_field: HeatFarField,
     /// Fast Marching local update: curved (default), point-source or
     /// plane-wave (eq. 2.34).
-    #[arg(long, default_value = "curved")]
-    fmm_update: String,
+    #[arg(long, default_value_t = FmmUpdate::default(),
+          value_parser = choice::<FmmUpdate>(FmmUpdate::ALL.map(FmmUpdate::name)))]
+    fmm_update: FmmUpdate,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -69,6 +72,36 @@ pub struct Args {
     #[arg(long)]
     force: bool,
 }
+
+/// The distance a `mesh geodesic` run computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Method {
+    /// The heat method.
+    Heat,
+    /// Fast Marching.
+    Fmm,
+    /// Dijkstra on the edges.
+    Dijkstra,
+    /// Exact polyhedral geodesics.
+    Exact,
+}
+
+impl Method {
+    /// Every method, in the order `--help` lists them.
+    const ALL: [Self; 4] = [Self::Heat, Self::Fmm, Self::Dijkstra, Self::Exact];
+
+    /// The name on the command line.
+    fn name(self) -> &'static str {
+        match self {
+            Self::Heat => "heat",
+            Self::Fmm => "fmm",
+            Self::Dijkstra => "dijkstra",
+            Self::Exact => "exact",
+        }
+    }
+}
+
+crate::choice::named!(Method);
 
 /// Everything `mesh geodesic --json` prints.
 #[derive(Debug, Clone, Serialize)]
@@ -162,14 +195,14 @@ impl Field {
 
 /// The distance field of the chosen method.
 fn distance(args: &Args, mesh: &mesh_kernel::TriMesh, sources: &[VertexId]) -> CliResult<Field> {
-    match args.method.as_str() {
-        "heat" => {
+    match args.method {
+        Method::Heat => {
             let laplacian = match args.laplacian.as_str() {
                 "intrinsic" => LaplacianKind::IntrinsicDelaunay,
                 "cotan" => LaplacianKind::Cotan,
                 other => return Err(format!("unknown --laplacian `{other}`; known: intrinsic, cotan").into()),
             };
-            let far_field: HeatFarField = args.far_field.parse()?;
+            let far_field = args.far_field;
             let opts = HeatOptions { time_factor: args.time_factor, laplacian, far_field, ..Default::default() };
             let start = Instant::now();
             let heat = HeatGeodesics::new(mesh, &opts)?;
@@ -178,17 +211,8 @@ fn distance(args: &Args, mesh: &mesh_kernel::TriMesh, sources: &[VertexId]) -> C
             let d = heat.solve(sources)?;
             Ok(Field { distance: d.distance, status: Some(d.status), precompute, solve: ms(start) })
         }
-        "fmm" => {
-            let update = match args.fmm_update.as_str() {
-                "curved" => FmmUpdate::CurvedFront,
-                "point-source" => FmmUpdate::PointSource,
-                "plane-wave" => FmmUpdate::PlaneWave,
-                other => {
-                    return Err(
-                        format!("unknown --fmm-update `{other}`; known: curved, point-source, plane-wave").into()
-                    )
-                }
-            };
+        Method::Fmm => {
+            let update = args.fmm_update;
             let start = Instant::now();
             let fmm = FastMarching::new(mesh, &FmmOptions { update, ..Default::default() })?;
             let pre = ms(start);
@@ -196,17 +220,16 @@ fn distance(args: &Args, mesh: &mesh_kernel::TriMesh, sources: &[VertexId]) -> C
             let d = fmm.distance(sources)?;
             Ok(Field::plain(d, pre, ms(start)))
         }
-        "dijkstra" => {
+        Method::Dijkstra => {
             let start = Instant::now();
             let d = dijkstra(mesh, sources, &DijkstraOptions::default())?.distance;
             Ok(Field::plain(d, 0.0, ms(start)))
         }
-        "exact" => {
+        Method::Exact => {
             let start = Instant::now();
             let d = exact_distance(mesh, sources, &ExactOptions::default())?;
             Ok(Field::plain(d, 0.0, ms(start)))
         }
-        other => Err(format!("unknown --method `{other}`; known: heat, fmm, dijkstra, exact").into()),
     }
 }
 
@@ -236,7 +259,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     }
     write_mesh(&args.out, view, &binary_ply())?;
     let heat = field.status.as_ref().map(|_| HeatSummary {
-        far_field: args.far_field.clone(),
+        far_field: args.far_field.to_string(),
         far_field_vertices: far_field.iter().filter(|x| **x > 0).count(),
         unresolved_vertices: unresolved.iter().filter(|x| **x > 0).count(),
     });
@@ -270,7 +293,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         input: args.input.describe(),
         output: args.out.display().to_string(),
         vertices: n,
-        method: args.method.clone(),
+        method: args.method.to_string(),
         sources: args.source.clone(),
         max_distance: (reached > 0).then_some(max),
         reached,
@@ -328,7 +351,7 @@ impl Args {
         vec![
             ("laplacian", flag("--laplacian", &self.laplacian)),
             ("time_factor", flag("--time-factor", number(self.time_factor))),
-            ("far_field", flag("--far-field", &self.far_field)),
+            ("far_field", flag("--far-field", self.far_field)),
         ]
     }
 }
@@ -401,13 +424,18 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("d.ply");
         let out = out.to_str().unwrap();
+        for unknown in
+            [&["--method", "magic"][..], &["--method", "fmm", "--fmm-update", "nope"], &["--far-field", "nope"]]
+        {
+            let mut v = vec!["--shape", "icosphere", "--source", "0", "--out", out];
+            v.extend_from_slice(unknown);
+            let message = crate::commands::try_parse_args::<Args>("geodesic", &v).expect_err("refused").to_string();
+            assert!(message.contains(unknown[unknown.len() - 1]) && message.contains("possible values"), "{message}");
+        }
         for bad in [
-            &["--source", "0", "--method", "magic"][..],
-            &["--source", "99999"],
+            &["--source", "99999"][..],
             &["--source", "0", "--laplacian", "nope"],
-            &["--source", "0", "--method", "fmm", "--fmm-update", "nope"],
             &["--source", "0", "--time-factor=-1"],
-            &["--source", "0", "--far-field", "nope"],
         ] {
             let mut v = vec!["--shape", "icosphere", "--res", "1", "--out", out];
             v.extend_from_slice(bad);

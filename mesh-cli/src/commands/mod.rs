@@ -16,11 +16,21 @@ pub mod wavelet;
 /// Parses the arguments of one command as `mesh <name> <extra>` would (tests).
 #[cfg(test)]
 pub(crate) fn parse_args<A: clap::Args>(name: &str, extra: &[&str]) -> A {
+    match try_parse_args(name, extra) {
+        Ok(args) => args,
+        Err(e) => e.exit(),
+    }
+}
+
+/// [`parse_args`], returning clap's error (a name not in an enum's list, a
+/// malformed number) instead of exiting (tests).
+#[cfg(test)]
+pub(crate) fn try_parse_args<A: clap::Args>(name: &str, extra: &[&str]) -> Result<A, clap::Error> {
     use clap::Parser;
     #[derive(Parser)]
     struct Cli<A: clap::Args> {
         #[command(flatten)]
         args: A,
     }
-    Cli::<A>::parse_from(std::iter::once(name).chain(extra.iter().copied())).args
+    Ok(Cli::<A>::try_parse_from(std::iter::once(name).chain(extra.iter().copied()))?.args)
 }

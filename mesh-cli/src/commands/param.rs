@@ -17,9 +17,10 @@ use mesh_io::MeshView;
 use mesh_kernel::clean::CleanOptions;
 use mesh_kernel::{FaceId, TriMesh};
 use mesh_param::distortion::face_distortion;
-use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSummary, Method, Spacing};
+use mesh_param::{atlas, Atlas, AtlasOptions, BoundaryMap, Chart, DistortionSummary, ParamMethod, Spacing};
 use serde::Serialize;
 
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{check_folder, check_output, finite, print_json, write_mesh, CliResult};
 
@@ -37,8 +38,9 @@ pub struct Args {
     #[arg(long, value_name = "OUT.obj|OUT.ply")]
     out: PathBuf,
     /// tutte, mean-value, harmonic, authalic, intrinsic, lscm or arap.
-    #[arg(long, default_value = "mean-value")]
-    method: String,
+    #[arg(long, default_value_t = ParamMethod::MeanValue,
+          value_parser = choice::<ParamMethod>(ParamMethod::ALL.map(|m| m.name())))]
+    method: ParamMethod,
     /// Weight of the conformal energy (intrinsic only).
     #[arg(long, value_name = "L", default_value_t = 0.5)]
     lambda: f64,
@@ -46,12 +48,13 @@ pub struct Args {
     #[arg(long, value_name = "M", default_value_t = 0.5)]
     mu: f64,
     /// Boundary of each chart for the fixed-boundary methods: circle or square.
-    #[arg(long, default_value = "circle")]
-    boundary: String,
+    #[arg(long, default_value_t = BoundaryMap::default(),
+          value_parser = choice::<BoundaryMap>(BoundaryMap::ALL.map(|b| b.name())))]
+    boundary: BoundaryMap,
     /// Spacing of the boundary vertices on the circle: chord (3D edge
     /// lengths) or uniform.
-    #[arg(long, default_value = "chord")]
-    spacing: String,
+    #[arg(long, default_value_t = Spacing::default(), value_parser = choice::<Spacing>(Spacing::ALL.map(Spacing::name)))]
+    spacing: Spacing,
     /// Local/global iterations (arap only).
     #[arg(long, value_name = "N", default_value_t = 20)]
     iterations: usize,
@@ -68,8 +71,8 @@ pub struct Args {
     max_area_distortion: Option<f64>,
     /// Repair the mesh first: auto (only when it is not an oriented
     /// manifold), always, or never (refuse such a mesh).
-    #[arg(long, default_value = "auto")]
-    clean: String,
+    #[arg(long, default_value_t = CleanMode::Auto, value_parser = choice::<CleanMode>(CleanMode::ALL.map(CleanMode::name)))]
+    clean: CleanMode,
     /// Print a JSON summary instead of text.
     #[arg(long)]
     json: bool,
@@ -89,17 +92,21 @@ pub(crate) enum CleanMode {
     Never,
 }
 
-impl std::str::FromStr for CleanMode {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "auto" => Ok(Self::Auto),
-            "always" => Ok(Self::Always),
-            "never" => Ok(Self::Never),
-            other => Err(format!("unknown --clean `{other}`; known: auto, always, never")),
+impl CleanMode {
+    /// Every mode, in the order `--help` lists them.
+    pub(crate) const ALL: [Self; 3] = [Self::Auto, Self::Always, Self::Never];
+
+    /// The name on the command line.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Always => "always",
+            Self::Never => "never",
         }
     }
 }
+
+crate::choice::named!(CleanMode);
 
 /// What was done to make the input an oriented manifold.
 #[derive(Debug, Clone, Serialize)]
@@ -252,21 +259,14 @@ pub struct Summary {
 
 /// The options from the command line.
 fn options(args: &Args) -> CliResult<AtlasOptions> {
-    let method = match args.method.as_str() {
-        "intrinsic" => Method::Intrinsic { lambda: args.lambda, mu: args.mu },
-        "arap" => Method::Arap { iterations: args.iterations },
-        name => Method::from_name(name)
-            .ok_or_else(|| format!("unknown --method `{name}`; known: {}", Method::NAMES.join(", ")))?,
+    let method = match args.method {
+        ParamMethod::Intrinsic { .. } => ParamMethod::Intrinsic { lambda: args.lambda, mu: args.mu },
+        ParamMethod::Arap { .. } => ParamMethod::Arap { iterations: args.iterations },
+        other => other,
     };
-    let spacing = match args.spacing.as_str() {
-        "chord" => Spacing::ChordLength,
-        "uniform" => Spacing::Uniform,
-        other => return Err(format!("unknown --spacing `{other}`; known: chord, uniform").into()),
-    };
-    let boundary = match args.boundary.as_str() {
-        "circle" => BoundaryMap::Circle(spacing),
-        "square" => BoundaryMap::Square,
-        other => return Err(format!("unknown --boundary `{other}`; known: circle, square").into()),
+    let boundary = match &args.boundary {
+        BoundaryMap::Circle(_) => BoundaryMap::Circle(args.spacing),
+        other => other.clone(),
     };
     Ok(AtlasOptions {
         method,
@@ -303,7 +303,13 @@ pub(crate) fn prepare(mesh: TriMesh, mode: CleanMode) -> CliResult<(TriMesh, Cle
 
 /// The atlas's summary (the chart list sorted by surface area), with the
 /// input and output left empty for the caller.
-pub(crate) fn summarize(cleaning: Cleaning, method: &Method, atlas: &Atlas, per_corner: bool, time_ms: f64) -> Summary {
+pub(crate) fn summarize(
+    cleaning: Cleaning,
+    method: &ParamMethod,
+    atlas: &Atlas,
+    per_corner: bool,
+    time_ms: f64,
+) -> Summary {
     let s = &atlas.summary;
     let mut chart_list: Vec<ChartSummary> = atlas.charts.iter().map(ChartSummary::from).collect();
     chart_list.sort_by(|a, b| b.surface_area.total_cmp(&a.surface_area).then(a.component.cmp(&b.component)));
@@ -333,7 +339,7 @@ pub(crate) fn summarize(cleaning: Cleaning, method: &Method, atlas: &Atlas, per_
 /// Does the work of `mesh param` but the printing.
 fn execute(args: &Args) -> CliResult<Summary> {
     let options = options(args)?;
-    let mode: CleanMode = args.clean.parse()?;
+    let mode = args.clean;
     check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let (vertices, faces) = (data.mesh.vertex_count(), data.mesh.face_count());
@@ -499,12 +505,12 @@ impl Args {
     pub fn given(&self) -> Vec<(&'static str, String)> {
         use crate::errors::{flag, number};
         let mut given = vec![
-            ("method", flag("--method", &self.method)),
+            ("method", flag("--method", self.method)),
             ("margin", flag("--margin", number(self.margin))),
             ("iterations", flag("--iterations", self.iterations)),
             ("lambda/mu", format!("--lambda {} --mu {}", number(self.lambda), number(self.mu))),
         ];
-        if self.boundary != "circle" {
+        if !matches!(self.boundary, BoundaryMap::Circle(_)) {
             given.push(("boundary", flag("--boundary", &self.boundary)));
         }
         if let Some(n) = self.max_chart_faces {
@@ -539,7 +545,7 @@ mod tests {
     fn disk_gets_one_uv_per_vertex() {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("d.obj");
-        for method in Method::NAMES {
+        for method in ParamMethod::ALL.map(|m| m.name()) {
             run(&args(&[
                 "--shape",
                 "disk",
@@ -621,16 +627,23 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("x.obj");
         let out = out.to_str().unwrap();
-        for bad in [
+        for unknown in [
             &["--method", "magic"][..],
             &["--boundary", "hexagon"],
             &["--spacing", "random"],
-            &["--method", "intrinsic", "--lambda=-1"],
+            &["--clean", "sometimes"],
+        ] {
+            let mut v = vec!["--shape", "disk", "--out", out];
+            v.extend_from_slice(unknown);
+            let message = crate::commands::try_parse_args::<Args>("param", &v).expect_err("refused").to_string();
+            assert!(message.contains(unknown[1]) && message.contains("possible values"), "{message}");
+        }
+        for bad in [
+            &["--method", "intrinsic", "--lambda=-1"][..],
             &["--method", "arap", "--iterations", "100000"],
             &["--margin", "0.6"],
             &["--max-area-distortion", "0.9"],
             &["--max-chart-faces", "0"],
-            &["--clean", "sometimes"],
         ] {
             let mut v = vec!["--shape", "disk", "--res", "3", "--out", out];
             v.extend_from_slice(bad);

@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{check_folder, check_output, CliResult};
 use crate::render::{render_png, RenderOptions};
@@ -35,22 +36,49 @@ pub struct Args {
     /// The axis pointing up in the picture: x, y, z, or auto (the file
     /// format's convention: y for OBJ, PLY, OFF and glTF, z for STL and for
     /// built-in shapes).
-    #[arg(long, default_value = "auto")]
-    up: String,
+    #[arg(long, default_value_t = Up::Auto, value_parser = choice::<Up>(Up::ALL.map(Up::name)))]
+    up: Up,
 }
 
-/// The unit vector of an axis name; `auto` is the convention of the input
-/// file's format ([`mesh_io::Format::conventional_up`]), z for built-in shapes.
-pub fn axis(name: &str, input: &InputArgs) -> CliResult<mesh_kernel::glam::DVec3> {
-    use mesh_kernel::glam::DVec3;
-    match name {
-        "x" => Ok(DVec3::X),
-        "y" => Ok(DVec3::Y),
-        "z" => Ok(DVec3::Z),
-        "auto" => {
-            Ok(input.path().and_then(|p| mesh_io::Format::from_path(p).ok()).map_or(DVec3::Z, |f| f.conventional_up()))
+/// The axis pointing up in a picture (`--up`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Up {
+    /// The convention of the input file's format.
+    Auto,
+    /// +x.
+    X,
+    /// +y.
+    Y,
+    /// +z.
+    Z,
+}
+
+impl Up {
+    /// Every choice, in the order `--help` lists them.
+    pub const ALL: [Self; 4] = [Self::Auto, Self::X, Self::Y, Self::Z];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::X => "x",
+            Self::Y => "y",
+            Self::Z => "z",
         }
-        _ => Err(format!("--up must be x, y, z or auto, not `{name}`").into()),
+    }
+
+    /// The unit vector; `auto` is the convention of the input file's format
+    /// ([`mesh_io::Format::conventional_up`]), z for built-in shapes.
+    pub fn axis(self, input: &InputArgs) -> mesh_kernel::glam::DVec3 {
+        use mesh_kernel::glam::DVec3;
+        match self {
+            Self::X => DVec3::X,
+            Self::Y => DVec3::Y,
+            Self::Z => DVec3::Z,
+            Self::Auto => {
+                input.path().and_then(|p| mesh_io::Format::from_path(p).ok()).map_or(DVec3::Z, |f| f.conventional_up())
+            }
+        }
     }
 }
 
@@ -71,6 +99,8 @@ fn vertex_field<'a>(data: &'a mesh_io::MeshData, name: &str) -> CliResult<std::b
     Err(format!("the input has no per-vertex scalar or label `{name}` (it has: {})", known.join(", ")).into())
 }
 
+crate::choice::named!(Up);
+
 /// Runs `mesh render`.
 pub fn run(args: &Args) -> CliResult<()> {
     check_output(&args.out, args.input.path(), false)?;
@@ -85,7 +115,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         height: args.height,
         azimuth: args.azimuth,
         elevation: args.elevation,
-        up: axis(&args.up, &args.input)?,
+        up: args.up.axis(&args.input),
         title: args.field.clone(),
     };
     check_folder(&args.out)?;

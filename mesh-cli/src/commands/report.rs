@@ -18,6 +18,8 @@ use mesh_kernel::{geometry, operators, TriMesh, VertexId};
 use serde_json::{json, Map, Value};
 
 use super::info::Info;
+use super::render::Up;
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{check_output, finite, write_json, write_mesh, CliResult};
 use crate::render::{render_png, RenderOptions};
@@ -36,8 +38,8 @@ pub struct Args {
     /// The axis pointing up in the pictures: x, y, z, or auto (the file
     /// format's convention: y for OBJ, PLY, OFF and glTF, z for STL and for
     /// built-in shapes).
-    #[arg(long, default_value = "auto")]
-    up: String,
+    #[arg(long, default_value_t = Up::Auto, value_parser = choice::<Up>(Up::ALL.map(Up::name)))]
+    up: Up,
 }
 
 /// The caption of each field's picture: what it is and its unit, with L the
@@ -115,7 +117,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     if !(args.feature_angle.is_finite() && (0.0..=180.0).contains(&args.feature_angle)) {
         return Err(format!("--feature-angle must be in [0, 180], got {}", args.feature_angle).into());
     }
-    let picture = RenderOptions { up: super::render::axis(&args.up, &args.input)?, ..RenderOptions::default() };
+    let picture = RenderOptions { up: args.up.axis(&args.input), ..RenderOptions::default() };
     std::fs::create_dir_all(&args.out).map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     let mut report = Report {
         dir: args.out.clone(),
@@ -444,9 +446,9 @@ const REPORT_LISTED_CHARTS: usize = 20;
 /// the (cleaned) mesh with one UV per face corner.
 fn param_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
     use super::param::{prepare, summarize, CleanMode};
-    use mesh_param::{atlas, AtlasOptions, Method};
+    use mesh_param::{atlas, AtlasOptions, ParamMethod};
     let options = AtlasOptions {
-        method: Method::MeanValue,
+        method: ParamMethod::MeanValue,
         max_chart_faces: Some(REPORT_CHART_FACES),
         max_area_distortion: Some(REPORT_AREA_DISTORTION),
         ..AtlasOptions::default()
@@ -560,7 +562,7 @@ fn wavelet_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         "coefficient_mean_norm_per_level": stats.iter().map(|s| s.mean).collect::<Vec<_>>(),
         "decay_rate": decay_rate(&stats),
         "compression": curve.iter().map(|c| json!({
-            "keep": c.keep, "kept_coefficients": c.kept_coefficients,
+            "keep_fraction": c.keep_fraction, "kept_coefficients": c.kept_coefficients,
             "rms_error": c.rms_error, "max_error": c.max_error,
         })).collect::<Vec<_>>(),
     }))

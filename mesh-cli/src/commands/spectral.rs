@@ -20,11 +20,12 @@ use std::time::Instant;
 use mesh_io::MeshView;
 use mesh_kernel::TriMesh;
 use mesh_spectral::{
-    compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, CompressionError,
-    HarmonicsOptions, LaplacianKind, ManifoldHarmonics, MassKind, Options, Transfer,
+    compress, compression_curve, filter_mesh, heat_kernel_signature, hks_times, ComponentSelection, EigenOptions,
+    HarmonicsOptions, LaplacianKind, ManifoldHarmonics, MassKind, SpectralCompressionPoint, Transfer,
 };
 use serde::Serialize;
 
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{binary_ply, check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
 
@@ -61,7 +62,7 @@ struct OperatorArgs {
     mass: String,
     /// Relative tolerance of every returned pair:
     /// ||L x - lambda M x|| / ((|lambda| + s) ||M x||), s the spectral scale.
-    #[arg(long, value_name = "TOL", default_value_t = Options::default().tolerance)]
+    #[arg(long, value_name = "TOL", default_value_t = EigenOptions::default().tolerance)]
     tolerance: f64,
 }
 
@@ -69,7 +70,7 @@ impl OperatorArgs {
     fn options(&self) -> CliResult<HarmonicsOptions> {
         let laplacian: LaplacianKind = self.laplacian.parse()?;
         let mass: MassKind = self.mass.parse()?;
-        let eigen = Options { tolerance: self.tolerance, ..Options::default() };
+        let eigen = EigenOptions { tolerance: self.tolerance, ..EigenOptions::default() };
         Ok(HarmonicsOptions { laplacian, mass, eigen })
     }
 }
@@ -85,8 +86,9 @@ struct EigenArgs {
     k: usize,
     /// Components: all (one zero eigenvalue per piece) or largest (the
     /// spectrum of the largest piece only; eigenvectors 0 elsewhere).
-    #[arg(long, default_value = "all")]
-    component: String,
+    #[arg(long, default_value_t = ComponentSelection::default(),
+          value_parser = choice::<ComponentSelection>(ComponentSelection::ALL.map(ComponentSelection::name)))]
+    component: ComponentSelection,
     /// Output PLY file: positions as double, per-vertex doubles phi0, phi1, ...
     #[arg(long, value_name = "OUT.ply")]
     out: Option<PathBuf>,
@@ -278,8 +280,8 @@ pub struct CurvePoint {
     pub max: Option<f64>,
 }
 
-impl From<CompressionError> for CurvePoint {
-    fn from(e: CompressionError) -> Self {
+impl From<SpectralCompressionPoint> for CurvePoint {
+    fn from(e: SpectralCompressionPoint) -> Self {
         Self { keep: e.keep, rms: finite(e.rms), vertex_rms: finite(e.vertex_rms), max: finite(e.max) }
     }
 }
@@ -350,7 +352,7 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let mut options = args.operator.options()?;
-    options.eigen.component = args.component.parse::<ComponentSelection>()?;
+    options.eigen.component = args.component;
     let mh = ManifoldHarmonics::new(mesh, args.k, &options)?;
     let pairs = mh.eigenpairs();
     let info = mh.operator_info().ok_or("no operator information")?;
@@ -563,7 +565,7 @@ impl Args {
         match &self.command {
             None => vec![
                 ("k", flag("--k", self.eigen.k)),
-                ("component", flag("--component", &self.eigen.component)),
+                ("component", flag("--component", self.eigen.component)),
                 operator(&self.eigen.operator),
             ],
             Some(SpectralCommand::Filter(a)) => {
@@ -651,13 +653,15 @@ mod tests {
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "500"])).is_err());
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--laplacian", "nope"])).is_err());
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "0"])).is_err());
-        assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--component", "some"])).is_err());
+        let some = Cli::try_parse_from(["mesh", "spectral", "--shape", "icosphere", "--component", "some"]);
+        let message = some.err().expect("an unknown component is refused").to_string();
+        assert!(message.contains("some") && message.contains("largest"), "{message}");
     }
 
     #[test]
     fn largest_component_and_names_parse() {
         let a = parse(&["--shape", "icosphere", "--res", "2", "--k", "4", "--component", "largest", "--json"]);
-        assert_eq!(a.eigen.component, "largest");
+        assert_eq!(a.eigen.component, mesh_spectral::ComponentSelection::Largest);
         run(&a).unwrap();
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "4", "--laplacian", "intrinsic"])).is_ok());
     }

@@ -12,9 +12,12 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use mesh_kernel::TriMesh;
-use mesh_wavelet::{decay_rate, subdivide, CompressOptions, Multiresolution, Options, Scheme, WaveletKind};
+use mesh_wavelet::{
+    decay_rate, subdivide, CompressOptions, MultiresOptions, Multiresolution, Scheme, SubdivideOptions, WaveletKind,
+};
 use serde::Serialize;
 
+use crate::choice::choice;
 use crate::input::InputArgs;
 use crate::output::{check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
 
@@ -24,10 +27,11 @@ pub struct SubdivideArgs {
     #[command(flatten)]
     input: InputArgs,
     /// Refinement scheme: midpoint, loop or butterfly.
-    #[arg(long, default_value = "loop")]
-    scheme: String,
+    #[arg(long, default_value_t = SubdivideOptions::default().scheme,
+          value_parser = choice::<Scheme>(Scheme::ALL.map(Scheme::name)))]
+    scheme: Scheme,
     /// Number of 4-to-1 splits.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = SubdivideOptions::default().levels)]
     levels: usize,
     /// Output mesh file (the format comes from the extension).
     #[arg(long, value_name = "OUT.obj")]
@@ -70,12 +74,12 @@ pub struct SubdivideSummary {
 
 /// Runs `mesh subdivide`.
 pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
-    let scheme: Scheme = args.scheme.parse()?;
+    let scheme = args.scheme;
     check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let (mesh, dropped) = drop_unreferenced(&data.mesh)?;
     let start = Instant::now();
-    let fine = subdivide(&mesh, scheme, args.levels)?;
+    let fine = subdivide(&mesh, &SubdivideOptions { scheme, levels: args.levels })?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
     write_mesh(&args.out, &fine, &args.write.options(Default::default()))?;
     let summary = SubdivideSummary {
@@ -146,24 +150,26 @@ enum WaveletCommand {
 struct BankArgs {
     /// Refinement scheme of the filter bank: midpoint (Lounsbery's
     /// piecewise-linear wavelets), loop or butterfly.
-    #[arg(long, default_value = "midpoint")]
-    scheme: String,
+    #[arg(long, default_value_t = MultiresOptions::default().scheme,
+          value_parser = choice::<Scheme>(Scheme::ALL.map(Scheme::name)))]
+    scheme: Scheme,
     /// Wavelet: lazy, or lifted (closer to orthogonal under eq. 2.36).
-    #[arg(long, default_value = "lifted")]
-    wavelet: String,
+    #[arg(long, default_value_t = MultiresOptions::default().wavelet,
+          value_parser = choice::<WaveletKind>(WaveletKind::ALL.map(WaveletKind::name)))]
+    wavelet: WaveletKind,
     /// Detect at most this many levels.
     #[arg(long, value_name = "N")]
     max_levels: Option<usize>,
 }
 
 impl BankArgs {
-    fn options(&self) -> CliResult<Options> {
-        let defaults = Options::default();
-        Ok(Options {
-            scheme: self.scheme.parse()?,
-            wavelet: self.wavelet.parse::<WaveletKind>()?,
+    fn options(&self) -> MultiresOptions {
+        let defaults = MultiresOptions::default();
+        MultiresOptions {
+            scheme: self.scheme,
+            wavelet: self.wavelet,
             max_levels: self.max_levels.unwrap_or(defaults.max_levels),
-        })
+        }
     }
 }
 
@@ -186,7 +192,7 @@ struct CompressArgs {
     bank: BankArgs,
     /// Fraction of the wavelet coefficients to keep, in [0, 1].
     #[arg(long, value_name = "FRACTION")]
-    keep: f64,
+    keep_fraction: f64,
     /// Output mesh file.
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
@@ -275,7 +281,7 @@ pub struct CompressSummary {
     /// The written file.
     pub output: String,
     /// Requested fraction.
-    pub keep: f64,
+    pub keep_fraction: f64,
     /// Wavelet coefficients kept.
     pub kept_coefficients: usize,
     /// All wavelet coefficients.
@@ -346,7 +352,7 @@ pub fn run(args: &Args) -> CliResult<()> {
 }
 
 fn analyze(args: &AnalyzeArgs) -> CliResult<AnalyzeSummary> {
-    let options = args.bank.options()?;
+    let options = args.bank.options();
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let start = Instant::now();
@@ -375,17 +381,17 @@ fn analyze(args: &AnalyzeArgs) -> CliResult<AnalyzeSummary> {
 }
 
 fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
-    let options = args.bank.options()?;
+    let options = args.bank.options();
     check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
-    let c = mr.compress(&CompressOptions { keep: args.keep })?;
+    let c = mr.compress(&CompressOptions { keep_fraction: args.keep_fraction })?;
     let out = c.multiresolution.synthesize()?;
     write_mesh(&args.out, &out, &args.write.options(Default::default()))?;
     Ok(CompressSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
-        keep: args.keep,
+        keep_fraction: args.keep_fraction,
         kept_coefficients: c.kept_coefficients,
         total_coefficients: c.total_coefficients,
         rms_error: finite(c.rms_error),
@@ -395,7 +401,7 @@ fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
 }
 
 fn lod(args: &LodArgs) -> CliResult<LodSummary> {
-    let options = args.bank.options()?;
+    let options = args.bank.options();
     check_output(&args.out, args.input.path(), args.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
@@ -448,7 +454,7 @@ impl SubdivideArgs {
     /// The library options set from flags, for [`crate::errors::translate`].
     pub fn given(&self) -> Vec<(&'static str, String)> {
         use crate::errors::flag;
-        vec![("levels", flag("--levels", self.levels)), ("scheme", flag("--scheme", &self.scheme))]
+        vec![("levels", flag("--levels", self.levels)), ("scheme", flag("--scheme", self.scheme))]
     }
 }
 
@@ -467,11 +473,11 @@ impl Args {
         use crate::errors::flag;
         let (bank, mut given) = match &self.command {
             WaveletCommand::Analyze(a) => (&a.bank, Vec::new()),
-            WaveletCommand::Compress(a) => (&a.bank, vec![("keep", flag("--keep", a.keep))]),
+            WaveletCommand::Compress(a) => (&a.bank, vec![("keep_fraction", flag("--keep-fraction", a.keep_fraction))]),
             WaveletCommand::Lod(a) => (&a.bank, vec![("level", flag("--level", a.level))]),
         };
-        given.push(("scheme", flag("--scheme", &bank.scheme)));
-        given.push(("wavelet", flag("--wavelet", &bank.wavelet)));
+        given.push(("scheme", flag("--scheme", bank.scheme)));
+        given.push(("wavelet", flag("--wavelet", bank.wavelet)));
         if let Some(n) = bank.max_levels {
             given.push(("max_levels", flag("--max-levels", n)));
         }
@@ -557,8 +563,9 @@ mod tests {
                 assert_eq!(&m.positions()[..input.vertex_count()], input.positions());
             }
         }
-        let Top::Subdivide(a) = parse(&["subdivide", "--scheme", "cubic", "--out", "x.obj"]) else { unreachable!() };
-        assert!(run_subdivide(&a).is_err());
+        let cubic = Cli::try_parse_from(["mesh", "subdivide", "--scheme", "cubic", "--out", "x.obj"]);
+        let message = cubic.err().expect("an unknown scheme is refused").to_string();
+        assert!(message.contains("cubic") && message.contains("butterfly"), "{message}");
     }
 
     #[test]
@@ -590,9 +597,16 @@ mod tests {
         let mut last = f64::INFINITY;
         for keep in ["0", "0.05", "0.3", "1"] {
             let out = dir.path().join(format!("c{keep}.obj"));
-            let Top::Wavelet(a) =
-                parse(&["wavelet", "compress", file, "--keep", keep, "--out", out.to_str().unwrap(), "--json"])
-            else {
+            let Top::Wavelet(a) = parse(&[
+                "wavelet",
+                "compress",
+                file,
+                "--keep-fraction",
+                keep,
+                "--out",
+                out.to_str().unwrap(),
+                "--json",
+            ]) else {
                 unreachable!()
             };
             let WaveletCommand::Compress(a) = a.command else { unreachable!() };
@@ -632,7 +646,8 @@ mod tests {
         };
         let e = run(&a).unwrap_err();
         assert!(e.to_string().contains("subdivision connectivity"), "{e}");
-        let Top::Wavelet(a) = parse(&["wavelet", "analyze", "--wavelet", "haar"]) else { unreachable!() };
-        assert!(run(&a).is_err());
+        let haar = Cli::try_parse_from(["mesh", "wavelet", "analyze", "--wavelet", "haar"]);
+        let message = haar.err().expect("an unknown wavelet is refused").to_string();
+        assert!(message.contains("haar") && message.contains("lifted"), "{message}");
     }
 }

@@ -40,8 +40,10 @@ use local::{advance_curvature, circular_front, mean_radius, plane_wave, Circular
 pub use stencil::FmmStats;
 use stencil::Stencils;
 
-/// The local solver of the Eikonal equation in one triangle.
+/// The local solver of the Eikonal equation in one triangle. More solvers
+/// may come: matches outside the crate need a wildcard arm.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum FmmUpdate {
     /// The plane-wave update of eq. 2.33-2.34 (Kimmel and Sethian 1998).
     PlaneWave,
@@ -53,6 +55,25 @@ pub enum FmmUpdate {
     #[default]
     CurvedFront,
 }
+
+impl FmmUpdate {
+    /// Every update; their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and
+    /// [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 3] = [Self::CurvedFront, Self::PointSource, Self::PlaneWave];
+
+    /// The name used on the command line: `curved`, `point-source`,
+    /// `plane-wave`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::CurvedFront => "curved",
+            Self::PointSource => "point-source",
+            Self::PlaneWave => "plane-wave",
+        }
+    }
+}
+
+crate::error::named_enum!(FmmUpdate, "update");
 
 /// Options of [`FastMarching`] and [`fmm_distance`].
 #[derive(Debug, Clone, PartialEq)]

@@ -26,6 +26,7 @@ pub(crate) struct Entry {
 
 /// Statistics of the preprocessing of a [`super::FastMarching`] object.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct FmmStats {
     /// Triangle corners with an angle above 90 degrees.
     pub obtuse_corners: usize,

@@ -75,6 +75,24 @@ pub enum HeatBoundary {
     Mean,
 }
 
+impl HeatBoundary {
+    /// Every condition; their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and
+    /// [`Display`](std::fmt::Display) writes.
+    pub const ALL: [Self; 3] = [Self::Mean, Self::Neumann, Self::Dirichlet];
+
+    /// The name used on the command line: `mean`, `neumann`, `dirichlet`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Mean => "mean",
+            Self::Neumann => "neumann",
+            Self::Dirichlet => "dirichlet",
+        }
+    }
+}
+
+crate::error::named_enum!(HeatBoundary, "boundary");
+
 /// Options of [`HeatGeodesics`] and [`heat_distance`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeatOptions {

@@ -1,10 +1,7 @@
 //! What the heat method reports per vertex, and what continues it where
 //! the heat flow is not resolved (see the `far` module of [`super`]).
 
-use std::fmt;
-use std::str::FromStr;
-
-use crate::error::{GeodesicError, Result};
+use crate::error::named_enum;
 
 /// What computes the distance where the heat flow is not resolved.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -33,10 +30,11 @@ pub enum HeatFarField {
 }
 
 impl HeatFarField {
-    /// Every choice, for loops in tests and command-line help.
+    /// Every choice; their [`name`](Self::name)s are what [`FromStr`](std::str::FromStr)
+    /// accepts and [`Display`](std::fmt::Display) writes.
     pub const ALL: [HeatFarField; 3] = [HeatFarField::FastMarching, HeatFarField::Restart, HeatFarField::None];
 
-    /// The lower-case name used on the command line.
+    /// The name used on the command line: `fmm`, `restart`, `none`.
     pub fn name(self) -> &'static str {
         match self {
             HeatFarField::FastMarching => "fmm",
@@ -46,30 +44,11 @@ impl HeatFarField {
     }
 }
 
-impl fmt::Display for HeatFarField {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for HeatFarField {
-    type Err = GeodesicError;
-
-    fn from_str(s: &str) -> Result<Self> {
-        match s.to_ascii_lowercase().as_str() {
-            "fmm" | "fast-marching" => Ok(HeatFarField::FastMarching),
-            "restart" => Ok(HeatFarField::Restart),
-            "none" => Ok(HeatFarField::None),
-            _ => Err(GeodesicError::InvalidOption {
-                name: "far_field",
-                reason: format!("unknown far field `{s}`; known: fmm, restart, none"),
-            }),
-        }
-    }
-}
+named_enum!(HeatFarField, "far_field");
 
 /// How the distance of one vertex was obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum HeatStatus {
     /// By the heat method: the heat flow is resolved at the vertex (with
     /// [`HeatFarField::Restart`], by one of the restarted flows).
@@ -90,6 +69,7 @@ pub enum HeatStatus {
 /// The result of [`HeatGeodesics::solve`]: one distance and one status per
 /// vertex.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct HeatDistance {
     /// Distance from the nearest source; `+infinity` where unreached.
     pub distance: Vec<f64>,

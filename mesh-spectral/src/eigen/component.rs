@@ -14,7 +14,7 @@ use super::problem::Component;
 use super::quality::{final_rayleigh_ritz, quality, rayleigh_quotients, Quality, Stiffness};
 use super::shift_invert::ShiftInvert;
 use super::shift_invert::LANES;
-use super::{dense, Method, Options, Stats};
+use super::{dense, EigenOptions, EigenSolver, EigenStats};
 use crate::error::{Result, SpectralError};
 
 /// The pairs of one component, before merging: values ascending, vectors
@@ -23,7 +23,7 @@ pub(crate) struct Partial {
     pub values: Vec<f64>,
     pub vectors: Mat<f64>,
     pub quality: Quality,
-    pub stats: Stats,
+    pub stats: EigenStats,
 }
 
 /// Vertex count up to which the dense path is still taken when the Krylov
@@ -46,7 +46,7 @@ pub(crate) fn solve(
     want: usize,
     deflate: bool,
     scale_pairs: usize,
-    options: &Options,
+    options: &EigenOptions,
 ) -> Result<Partial> {
     let scale = spectral_scale(c.area, scale_pairs);
     let dim = c.massive - usize::from(deflate);
@@ -62,10 +62,10 @@ pub(crate) fn solve(
     }
 }
 
-fn dense_component(c: &Component, want: usize, deflate: bool, scale: f64, options: &Options) -> Result<Partial> {
+fn dense_component(c: &Component, want: usize, deflate: bool, scale: f64, options: &EigenOptions) -> Result<Partial> {
     let t = Instant::now();
     let (values, vectors) = dense::smallest(c, want, deflate)?;
-    let mut stats = Stats::empty(Method::Dense);
+    let mut stats = EigenStats::empty(EigenSolver::Dense);
     stats.attempts = 1;
     stats.iterate_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
@@ -85,13 +85,13 @@ struct KrylovSizes {
 
 impl KrylovSizes {
     /// `None` when the basis would not fit in the dimension `dim`.
-    fn new(want: usize, dim: usize, o: &Options) -> Option<Self> {
+    fn new(want: usize, dim: usize, o: &EigenOptions) -> Option<Self> {
         let nev = want + o.guard.unwrap_or((want / 10).max(4));
         let block = o.block_size.unwrap_or((LANES * nev.div_ceil(64)).clamp(LANES, 4 * LANES));
         Self::with_block(want, dim, o, block)
     }
 
-    fn with_block(want: usize, dim: usize, o: &Options, block: usize) -> Option<Self> {
+    fn with_block(want: usize, dim: usize, o: &EigenOptions, block: usize) -> Option<Self> {
         let nev = want + o.guard.unwrap_or((want / 10).max(4));
         let basis = o.basis_size.unwrap_or(2 * nev + 2 * block).max(nev + 2 * block);
         (basis + block <= dim).then_some(Self { nev, block, basis })
@@ -99,7 +99,7 @@ impl KrylovSizes {
 
     /// The sizes of the next attempt: one more lane group in the block (when
     /// the block size is automatic), the basis grown to match.
-    fn grown(self, want: usize, dim: usize, o: &Options, at_least: usize) -> Self {
+    fn grown(self, want: usize, dim: usize, o: &EigenOptions, at_least: usize) -> Self {
         if o.block_size.is_some() {
             return self;
         }
@@ -177,11 +177,11 @@ fn krylov_component(
     deflate: bool,
     scale: f64,
     sizes: KrylovSizes,
-    options: &Options,
+    options: &EigenOptions,
 ) -> Result<Partial> {
     let dim = c.massive - usize::from(deflate);
     let st = Stiffness::new(&c.laplacian)?;
-    let mut stats = Stats::empty(Method::BlockKrylovSchur);
+    let mut stats = EigenStats::empty(EigenSolver::BlockKrylovSchur);
     let (mut sizes, mut restarts) = (sizes, options.max_restarts);
     let mut shift = options.shift.unwrap_or(-scale);
     let mut op: Option<ShiftInvert> = None;
@@ -234,7 +234,7 @@ fn krylov_component(
     }
 }
 
-fn not_converged(q: &Quality, want: usize, stats: &Stats, tolerance: f64) -> SpectralError {
+fn not_converged(q: &Quality, want: usize, stats: &EigenStats, tolerance: f64) -> SpectralError {
     SpectralError::NotConverged {
         converged: q.relative.len() - q.misses(),
         wanted: want,
@@ -261,12 +261,12 @@ struct Run<'a> {
     want: usize,
     sizes: KrylovSizes,
     restarts: usize,
-    options: &'a Options,
+    options: &'a EigenOptions,
 }
 
 impl Run<'_> {
     /// Adds its counts and timings to `stats`.
-    fn go(&self, stats: &mut Stats) -> Result<Partial> {
+    fn go(&self, stats: &mut EigenStats) -> Result<Partial> {
         let t = Instant::now();
         let (c, tol, scale) = (self.c, self.options.tolerance, self.scale);
         let cfg = Config {

@@ -7,7 +7,7 @@ use faer::Mat;
 use super::component::{self, spectral_scale, Partial};
 use super::problem::{Component, Problem};
 use super::quality::{quality, Quality, Stiffness};
-use super::{Eigenpairs, Method, Options, Stats};
+use super::{EigenOptions, EigenSolver, EigenStats, Eigenpairs};
 use crate::error::{Result, SpectralError};
 
 /// Where a returned pair comes from.
@@ -31,7 +31,7 @@ fn null_pair(c: &Component, scale: f64, tolerance: f64) -> Result<Option<(Mat<f6
 /// Solves every component of `problem` for its share of the `k` smallest
 /// pairs and merges them: ascending values, ties by component (largest area
 /// first) then position, so the result is deterministic.
-pub(crate) fn solve_all(problem: &Problem, k: usize, options: &Options) -> Result<Eigenpairs> {
+pub(crate) fn solve_all(problem: &Problem, k: usize, options: &EigenOptions) -> Result<Eigenpairs> {
     let comps = &problem.components;
     let mut by_area: Vec<usize> = (0..comps.len()).collect();
     by_area.sort_by(|&a, &b| comps[b].area.total_cmp(&comps[a].area).then(a.cmp(&b)));
@@ -116,12 +116,12 @@ fn missing() -> SpectralError {
 
 /// Counts and times summed over the solved components; sizes, shift and
 /// method of the largest solved one.
-fn combined_stats(by_area: &[usize], partials: &[Option<Partial>]) -> Stats {
-    let solved: Vec<&Stats> = partials.iter().flatten().map(|p| &p.stats).collect();
+fn combined_stats(by_area: &[usize], partials: &[Option<Partial>]) -> EigenStats {
+    let solved: Vec<&EigenStats> = partials.iter().flatten().map(|p| &p.stats).collect();
     let largest = by_area.iter().find_map(|&c| partials[c].as_ref().map(|p| p.stats.clone()));
-    let mut stats = largest.unwrap_or_else(|| Stats::empty(Method::NullSpace));
+    let mut stats = largest.unwrap_or_else(|| EigenStats::empty(EigenSolver::NullSpace));
     // A fold from +0: an empty `sum` of f64 is -0.
-    let sum = |f: fn(&Stats) -> f64| solved.iter().fold(0.0, |a, s| a + f(s));
+    let sum = |f: fn(&EigenStats) -> f64| solved.iter().fold(0.0, |a, s| a + f(s));
     stats.restarts = solved.iter().map(|s| s.restarts).sum();
     stats.operator_columns = solved.iter().map(|s| s.operator_columns).sum();
     stats.factor_seconds = sum(|s| s.factor_seconds);

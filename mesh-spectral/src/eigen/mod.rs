@@ -12,7 +12,7 @@
 //! Then per component, only as many pairs as can still rank among the k
 //! smallest:
 //!
-//! - **dense** (`n <=` [`Options::dense_threshold`]): `M^-1/2 L M^-1/2`
+//! - **dense** (`n <=` [`EigenOptions::dense_threshold`]): `M^-1/2 L M^-1/2`
 //!   with the constant moved to the top, faer's dense self-adjoint
 //!   eigensolver, O(n^3);
 //! - **block Krylov-Schur shift-invert** otherwise: `K = L - sigma M` with a
@@ -28,7 +28,7 @@
 //!   dense work per restart.
 //!
 //! Every returned pair meets the tolerance on its explicit relative
-//! residual (see [`Options::tolerance`]); a component whose pairs miss it is
+//! residual (see [`EigenOptions::tolerance`]); a component whose pairs miss it is
 //! solved again with more restarts, a larger block and another shift, and
 //! otherwise the call fails with [`SpectralError::NotConverged`].
 //! Results are deterministic (seeded start block), eigenvalues ascending,
@@ -45,7 +45,6 @@ mod shift_invert;
 pub(crate) mod tall;
 
 use std::fmt;
-use std::str::FromStr;
 use std::time::Instant;
 
 use faer::{Mat, MatRef};
@@ -67,35 +66,26 @@ pub enum ComponentSelection {
     Largest,
 }
 
-/// The names of [`ComponentSelection`], as parsed and displayed.
-pub const COMPONENT_NAMES: [&str; 2] = ["all", "largest"];
-
 impl ComponentSelection {
-    /// Every choice, in the order of [`COMPONENT_NAMES`].
+    /// Every choice; their [`name`](Self::name)s are what
+    /// [`FromStr`](std::str::FromStr) accepts and [`Display`](fmt::Display)
+    /// writes.
     pub const ALL: [Self; 2] = [Self::All, Self::Largest];
-}
 
-impl FromStr for ComponentSelection {
-    type Err = SpectralError;
-    fn from_str(s: &str) -> Result<Self> {
-        COMPONENT_NAMES.iter().position(|n| n.eq_ignore_ascii_case(s.trim())).map(|i| Self::ALL[i]).ok_or_else(|| {
-            SpectralError::InvalidOption {
-                name: "component",
-                reason: format!("unknown `{s}`; known: {}", COMPONENT_NAMES.join(", ")),
-            }
-        })
+    /// The name used on the command line: `all`, `largest`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::All => "all",
+            Self::Largest => "largest",
+        }
     }
 }
 
-impl fmt::Display for ComponentSelection {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(COMPONENT_NAMES[usize::from(*self == Self::Largest)])
-    }
-}
+crate::error::named_enum!(ComponentSelection, "component");
 
 /// Options of [`eigenpairs`]. `None` means "chosen from the problem".
 #[derive(Debug, Clone, PartialEq)]
-pub struct Options {
+pub struct EigenOptions {
     /// Shift sigma of `K = L - sigma M`; must lie below the smallest
     /// eigenvalue. `None`: `-s` with the spectral scale
     /// `s = max(lambda_est(k) / 20, lambda_est(1) / 2)` of each component
@@ -108,7 +98,7 @@ pub struct Options {
     /// the component's spectral scale `s` above. Where evaluating the
     /// residual in double precision cannot do better (`16 eps || |L| |x| ||`,
     /// reached for the smallest pairs of meshes of 1e5-1e6 vertices), that
-    /// level is the target instead and [`Stats::tolerance`] says so.
+    /// level is the target instead and [`EigenStats::tolerance`] says so.
     pub tolerance: f64,
     /// Block size: how many vectors are solved and orthogonalized together;
     /// must exceed the largest multiplicity of an eigenvalue inside one
@@ -131,7 +121,7 @@ pub struct Options {
     pub component: ComponentSelection,
 }
 
-impl Default for Options {
+impl Default for EigenOptions {
     fn default() -> Self {
         Self {
             shift: None,
@@ -147,7 +137,7 @@ impl Default for Options {
     }
 }
 
-impl Options {
+impl EigenOptions {
     fn validate(&self) -> Result<()> {
         let bad = |name, reason: String| Err(SpectralError::InvalidOption { name, reason });
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
@@ -167,7 +157,8 @@ impl Options {
 
 /// How the largest solved component was solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
+#[non_exhaustive]
+pub enum EigenSolver {
     /// Nothing to solve: every returned pair is an exact null vector (a
     /// constant per component).
     NullSpace,
@@ -177,7 +168,7 @@ pub enum Method {
     BlockKrylovSchur,
 }
 
-impl fmt::Display for Method {
+impl fmt::Display for EigenSolver {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             Self::NullSpace => "null-space",
@@ -189,9 +180,10 @@ impl fmt::Display for Method {
 
 /// What the solve did and how long it took.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Stats {
-    /// Method used for the largest component that needed a solve.
-    pub method: Method,
+#[non_exhaustive]
+pub struct EigenStats {
+    /// Solver used for the largest component that needed a solve.
+    pub method: EigenSolver,
     /// Connected components of `L` with mass.
     pub components: usize,
     /// Components the spectrum was computed on (all, or 1 with
@@ -200,7 +192,7 @@ pub struct Stats {
     /// Returned pairs that are exact null vectors (the constant of a
     /// component, eigenvalue exactly 0).
     pub zero_eigenvalues: usize,
-    /// The tolerance the returned pairs meet: [`Options::tolerance`], or
+    /// The tolerance the returned pairs meet: [`EigenOptions::tolerance`], or
     /// the rounding level of the residual where that is larger.
     pub tolerance: f64,
     /// Shift sigma of the largest solved component (`None` when dense).
@@ -232,9 +224,9 @@ pub struct Stats {
     pub total_seconds: f64,
 }
 
-impl Stats {
+impl EigenStats {
     /// Zero counts and times.
-    pub(crate) fn empty(method: Method) -> Self {
+    pub(crate) fn empty(method: EigenSolver) -> Self {
         Self {
             method,
             components: 1,
@@ -260,12 +252,13 @@ impl Stats {
 
 /// The `k` smallest eigenpairs of `L x = lambda M x`.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct Eigenpairs {
     /// Eigenvalues, ascending; the null vectors' are exactly 0.
     pub values: Vec<f64>,
     /// Relative residual `||L x - lambda M x|| / ((|lambda| + s) ||M x||)`
-    /// of each pair (see [`Options::tolerance`]); each is at most
-    /// [`Stats::tolerance`].
+    /// of each pair (see [`EigenOptions::tolerance`]); each is at most
+    /// [`EigenStats::tolerance`].
     pub residuals: Vec<f64>,
     /// Absolute residual `||L x - lambda M x|| / ||M x||` of each pair (in
     /// the units of lambda).
@@ -275,7 +268,7 @@ pub struct Eigenpairs {
     /// largest with [`ComponentSelection::Largest`].
     pub excluded: Vec<usize>,
     /// Solver statistics and timings.
-    pub stats: Stats,
+    pub stats: EigenStats,
     vectors: Mat<f64>,
 }
 
@@ -345,11 +338,13 @@ impl Eigenpairs {
 
 /// The `k` smallest eigenpairs of `L x = lambda M x` (see the module
 /// documentation for the method). `L`: symmetric (checked), typically
-/// positive semi-definite; `M`: diagonal with non-negative entries.
+/// positive semi-definite; `mass`: the diagonal of the lumped mass matrix
+/// `M` (non-negative, finite), the form [`crate::laplace_beltrami`],
+/// [`crate::Pencil`] and `mesh_kernel::operators::lumped_mass` return.
 ///
 /// Cost for one component of n vertices: a sparse Cholesky of `L - sigma M`
 /// plus about 3-6 k solves done in blocks, and O(n k^2) dense work per
-/// restart (a handful); O(n^3) for `n <=` [`Options::dense_threshold`];
+/// restart (a handful); O(n^3) for `n <=` [`EigenOptions::dense_threshold`];
 /// nothing but O(nnz) checks for pairs that are null vectors.
 ///
 /// Errors: malformed matrices, `k = 0`, `k` above the number of vertices
@@ -359,13 +354,14 @@ impl Eigenpairs {
 ///
 /// # Errors
 /// `SpectralError::InvalidOption` (`k` for 0, `tolerance`, `shift`, `block_size`, `component`) for invalid
-/// options; `SpectralError::InvalidMatrix` for matrices that are not square, symmetric or of matching sizes,
-/// or masses that are not positive and finite; `SpectralError::TooManyPairs` when `k` exceeds the vertices
+/// options; `SpectralError::InvalidMatrix` for a Laplacian that is not square or symmetric, or masses that
+/// are negative or not finite; `SpectralError::Dimension` when `mass` does not have one entry per row of `L`; `SpectralError::TooManyPairs` when `k` exceeds the vertices
 /// carrying mass; `SpectralError::NotConverged` with the residuals when the tolerance is not reached;
 /// `SpectralError::Mesh` (`MeshError::Solver`) or `SpectralError::Dense` when a factorization fails.
-pub fn eigenpairs(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &Options) -> Result<Eigenpairs> {
+pub fn eigenpairs(l: &CsMat<f64>, mass: &[f64], k: usize, options: &EigenOptions) -> Result<Eigenpairs> {
     let start = Instant::now();
     options.validate()?;
+    let m = &mesh_kernel::operators::mass::diagonal(mass.to_vec());
     if k == 0 {
         return Err(SpectralError::InvalidOption { name: "k", reason: "at least one eigenpair is needed".into() });
     }
@@ -373,7 +369,7 @@ pub fn eigenpairs(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &Options) -
     if units.is_identity() {
         return solve(l, m, k, options, start);
     }
-    let options = Options { shift: options.shift.map(|s| s / units.lambda()), ..options.clone() };
+    let options = EigenOptions { shift: options.shift.map(|s| s / units.lambda()), ..options.clone() };
     let mut out = solve(&l.map(|x| x / units.l), &m.map(|x| x / units.m), k, &options, start)?;
     units.restore(&mut out);
     Ok(out)
@@ -423,7 +419,7 @@ impl Units {
 }
 
 /// [`eigenpairs`] on a pencil of moderate size.
-fn solve(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &Options, start: Instant) -> Result<Eigenpairs> {
+fn solve(l: &CsMat<f64>, m: &CsMat<f64>, k: usize, options: &EigenOptions, start: Instant) -> Result<Eigenpairs> {
     let mut problem = problem::split(l, m)?;
     let components = problem.components.len();
     if options.component == ComponentSelection::Largest {

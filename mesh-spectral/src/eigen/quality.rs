@@ -9,7 +9,7 @@
 //! rounding level     f   = 16 eps (|| |L| |x| || + |lambda| ||M x||) / ((|lambda| + s) ||M x||)
 //! ```
 //!
-//! `rho` is what [`super::Options::tolerance`] bounds (the normwise
+//! `rho` is what [`super::EigenOptions::tolerance`] bounds (the normwise
 //! relative residual of ARPACK-style shift-invert tests, made independent of
 //! the shift actually used). `f` is the error of evaluating the residual
 //! itself in double precision (Higham 2002, "Accuracy and Stability of

@@ -6,9 +6,9 @@ use mesh_kernel::TriMesh;
 use mesh_spectral::Eigenpairs;
 use sprs::CsMat;
 
-/// Cotangent Laplacian and mixed Voronoi mass matrix.
-pub fn pencil(mesh: &TriMesh) -> (CsMat<f64>, CsMat<f64>) {
-    (operators::cotan_laplacian(mesh), operators::mass_matrix(mesh, MassKind::MixedVoronoi))
+/// Cotangent Laplacian and mixed Voronoi lumped masses.
+pub fn pencil(mesh: &TriMesh) -> (CsMat<f64>, Vec<f64>) {
+    (operators::cotan_laplacian(mesh), masses(mesh))
 }
 
 /// Lumped mixed Voronoi masses.

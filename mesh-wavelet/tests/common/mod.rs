@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use mesh_kernel::{glam::DVec3, shapes, TriMesh};
-use mesh_wavelet::{subdivide, Scheme};
+use mesh_wavelet::{subdivide, Scheme, SubdivideOptions};
 
 pub use mesh_testkit::SplitMix64;
 
@@ -47,7 +47,7 @@ pub fn relative_max_distance(a: &TriMesh, b: &TriMesh) -> f64 {
 /// exact torus R = 2, r = 0.5: smooth, with subdivision connectivity.
 pub fn smooth_torus(levels: usize) -> TriMesh {
     let base = shapes::torus(2.0, 0.5, 12, 6).unwrap();
-    let fine = subdivide(&base, Scheme::Midpoint, levels).unwrap();
+    let fine = subdivide(&base, &SubdivideOptions { scheme: Scheme::Midpoint, levels }).unwrap();
     let p = fine
         .positions()
         .iter()

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use mesh_curvature::{
-    curvature_tensor, gaussian_curvature, mean_curvature, GaussianOptions, MeanOptions, Method, TensorOptions,
+    curvature_tensor, gaussian_curvature, mean_curvature, GaussianOptions, MeanOptions, TensorMethod, TensorOptions,
 };
 use mesh_io::MeshData;
 
@@ -14,7 +14,7 @@ use super::Operation;
 pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> {
     let mesh = &data.mesh;
     let _ = mesh.connectivity();
-    let rusinkiewicz = TensorOptions { method: Method::Rusinkiewicz, ..Default::default() };
+    let rusinkiewicz = TensorOptions { method: TensorMethod::Rusinkiewicz, ..Default::default() };
     vec![
         Operation::new("gaussian_curvature", move || Ok(gaussian_curvature(mesh, &GaussianOptions::default())?)),
         Operation::new("mean_curvature", move || Ok(mean_curvature(mesh, &MeanOptions::default())?)),

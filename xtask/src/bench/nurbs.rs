@@ -16,7 +16,7 @@ use super::Operation;
 
 /// A rational bicubic surface with 16 x 16 control points (as in
 /// mesh-nurbs' criterion bench).
-fn bicubic() -> mesh_nurbs::Result<NurbsSurface> {
+fn bicubic() -> mesh_nurbs::error::Result<NurbsSurface> {
     let n = 16;
     let knots = KnotVector::clamped_uniform(3, n)?;
     let mut points = Vec::with_capacity(n * n);

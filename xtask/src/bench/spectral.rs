@@ -14,7 +14,7 @@ use mesh_io::MeshData;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::TriMesh;
-use mesh_spectral::{compress, eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
+use mesh_spectral::{compress, eigenpairs, EigenOptions, HarmonicsOptions, ManifoldHarmonics};
 
 use super::Operation;
 
@@ -34,11 +34,11 @@ fn basis<'b>(cell: &'b Basis, mesh: &TriMesh) -> crate::Result<&'b (ManifoldHarm
 pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> {
     let mesh = &data.mesh;
     let l = operators::cotan_laplacian(mesh);
-    let m = operators::mass_matrix(mesh, MassKind::MixedVoronoi);
+    let m = operators::lumped_mass(mesh, MassKind::MixedVoronoi);
     let cell = Basis::default();
     let (forward, inverse, compressed) = (cell.clone(), cell.clone(), cell);
     vec![
-        Operation::new("eigs20", move || Ok(eigenpairs(&l, &m, 20, &Options::default())?)),
+        Operation::new("eigs20", move || Ok(eigenpairs(&l, &m, 20, &EigenOptions::default())?)),
         Operation::new("harmonics_forward_20", move || {
             Ok(basis(&forward, mesh)?.0.forward_points(mesh.positions())?)
         }),

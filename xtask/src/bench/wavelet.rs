@@ -11,7 +11,7 @@ use std::sync::Arc;
 use mesh_io::MeshData;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::TriMesh;
-use mesh_wavelet::{detect, subdivide, FilterBank, Scheme, WaveletKind};
+use mesh_wavelet::{detect, subdivide, FilterBank, Scheme, SubdivideOptions, WaveletKind};
 
 use super::Operation;
 
@@ -25,12 +25,18 @@ fn fresh(mesh: &TriMesh) -> TriMesh {
 pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> {
     let mesh = &data.mesh;
     let mut ops = vec![
-        Operation::new("loop_subdivision_1", move || Ok(subdivide(&fresh(mesh), Scheme::Loop, 1)?)),
-        Operation::new("upsample_1", move || Ok(subdivide(&fresh(mesh), Scheme::Midpoint, 1)?)),
-        Operation::new("butterfly_subdivision_1", move || Ok(subdivide(&fresh(mesh), Scheme::Butterfly, 1)?)),
+        Operation::new("loop_subdivision_1", move || {
+            Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Loop, levels: 1 })?)
+        }),
+        Operation::new("upsample_1", move || {
+            Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Midpoint, levels: 1 })?)
+        }),
+        Operation::new("butterfly_subdivision_1", move || {
+            Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 })?)
+        }),
     ];
     // The semi-regular input of the filter-bank operations, built once.
-    let prepared = subdivide(mesh, Scheme::Midpoint, 2).and_then(|fine| {
+    let prepared = subdivide(mesh, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 2 }).and_then(|fine| {
         let h = Arc::new(detect(&fine, &Default::default())?);
         let bank = Arc::new(FilterBank::new(&h, Scheme::Midpoint, WaveletKind::Lifted)?);
         Ok((Arc::new(fine), h, bank))

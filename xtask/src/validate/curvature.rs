@@ -8,7 +8,7 @@ use std::f64::consts::{PI, TAU};
 
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, CurvatureTensor, Degree, FitOptions,
-    GaussianOptions, MeanOptions, Method, Neighborhood, TensorOptions,
+    GaussianOptions, IntegralOptions, MeanOptions, Neighborhood, TensorMethod, TensorOptions,
 };
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
@@ -89,14 +89,14 @@ fn errors(t: &CurvatureTensor, truth: &Truth) -> [f64; 5] {
     e
 }
 
-fn tensor(m: &TriMesh, method: Method) -> mesh_curvature::Result<CurvatureTensor> {
+fn tensor(m: &TriMesh, method: TensorMethod) -> mesh_curvature::error::Result<CurvatureTensor> {
     curvature_tensor(m, &TensorOptions { method, ..Default::default() })
 }
 
 /// The targets, on the default estimator.
 fn targets(v: &mut Validator) {
     match torus(256, 64).map_err(|e| e.to_string()).and_then(|(m, t)| {
-        let c = tensor(&m, Method::default()).map_err(|e| e.to_string())?;
+        let c = tensor(&m, TensorMethod::default()).map_err(|e| e.to_string())?;
         Ok(errors(&c, &t))
     }) {
         Ok(e) => {
@@ -108,7 +108,7 @@ fn targets(v: &mut Validator) {
     }
     match shapes::icosphere(5).map_err(|e| e.to_string()).and_then(|m| {
         let n = m.vertex_count();
-        let c = tensor(&m, Method::default()).map_err(|e| e.to_string())?;
+        let c = tensor(&m, TensorMethod::default()).map_err(|e| e.to_string())?;
         Ok(errors(&c, &vec![(1.0, 1.0, None, true); n]))
     }) {
         Ok(e) => {
@@ -119,7 +119,7 @@ fn targets(v: &mut Validator) {
         Err(e) => v.error("icosphere(5) curvature tensor", e),
     }
     match cylinder(128, 64).map_err(|e| e.to_string()).and_then(|(m, t)| {
-        let c = tensor(&m, Method::default()).map_err(|e| e.to_string())?;
+        let c = tensor(&m, TensorMethod::default()).map_err(|e| e.to_string())?;
         Ok(errors(&c, &t))
     }) {
         Ok(e) => {
@@ -160,7 +160,7 @@ fn orders(v: &mut Validator, name: &str, errs: mesh_kernel::Result<Vec<f64>>, mi
 /// regular grid; angle defect and cotangent formula: 2).
 fn convergence(v: &mut Validator) {
     let tori = [(64, 16), (128, 32), (256, 64)];
-    let torus_k = |method: Method, which: usize| -> mesh_kernel::Result<Vec<f64>> {
+    let torus_k = |method: TensorMethod, which: usize| -> mesh_kernel::Result<Vec<f64>> {
         tori.iter()
             .map(|&(nu, nv)| {
                 let (m, t) = torus(nu, nv)?;
@@ -169,14 +169,14 @@ fn convergence(v: &mut Validator) {
             })
             .collect()
     };
-    orders(v, "torus k1, quartic fit (default, expected >= 3)", torus_k(Method::default(), 0), 2.8);
-    orders(v, "torus k2, quartic fit (default, expected >= 3)", torus_k(Method::default(), 1), 2.8);
-    orders(v, "torus k1, Rusinkiewicz (expected 2)", torus_k(Method::Rusinkiewicz, 0), 1.8);
-    orders(v, "torus k2, Rusinkiewicz (expected 2)", torus_k(Method::Rusinkiewicz, 1), 1.8);
-    let nc = Method::NormalCycle(Neighborhood::Rings(1));
+    orders(v, "torus k1, quartic fit (default, expected >= 3)", torus_k(TensorMethod::default(), 0), 2.8);
+    orders(v, "torus k2, quartic fit (default, expected >= 3)", torus_k(TensorMethod::default(), 1), 2.8);
+    orders(v, "torus k1, Rusinkiewicz (expected 2)", torus_k(TensorMethod::Rusinkiewicz, 0), 1.8);
+    orders(v, "torus k2, Rusinkiewicz (expected 2)", torus_k(TensorMethod::Rusinkiewicz, 1), 1.8);
+    let nc = TensorMethod::NormalCycle(Neighborhood::Rings(1));
     orders(v, "torus k1, normal cycle 1-ring (expected 2)", torus_k(nc, 0), 1.8);
     orders(v, "torus k2, normal cycle 1-ring (expected 2)", torus_k(nc, 1), 1.8);
-    let quadric = Method::Fit(FitOptions {
+    let quadric = TensorMethod::Fit(FitOptions {
         neighborhood: Neighborhood::Rings(1),
         degree: Degree::Quadric,
         use_normals: false,
@@ -187,7 +187,8 @@ fn convergence(v: &mut Validator) {
         (3..=5)
             .map(|level| {
                 let (m, t) = ellipsoid(level)?;
-                let c = tensor(&m, Method::default()).map_err(|e| mesh_kernel::MeshError::Degenerate(e.to_string()))?;
+                let c = tensor(&m, TensorMethod::default())
+                    .map_err(|e| mesh_kernel::MeshError::Degenerate(e.to_string()))?;
                 Ok(errors(&c, &t)[which])
             })
             .collect()
@@ -273,9 +274,9 @@ fn read_shared(v: &mut Validator) -> Vec<(String, TriMesh)> {
 /// Every estimator gives finite values on every shared mesh.
 fn shared_meshes(v: &mut Validator) {
     let methods = [
-        ("fit", Method::default()),
-        ("rusinkiewicz", Method::Rusinkiewicz),
-        ("normal cycle", Method::NormalCycle(Neighborhood::Rings(2))),
+        ("fit", TensorMethod::default()),
+        ("rusinkiewicz", TensorMethod::Rusinkiewicz),
+        ("normal cycle", TensorMethod::NormalCycle(Neighborhood::Rings(2))),
     ];
     for (name, m) in read_shared(v) {
         let mut finite = true;
@@ -302,10 +303,9 @@ fn shared_meshes(v: &mut Validator) {
 
 /// Integral curvature over the whole sphere: 4 pi.
 fn integral(v: &mut Validator) {
-    match shapes::icosphere(4)
-        .map_err(|e| e.to_string())
-        .and_then(|m| integral_curvature(&m, Neighborhood::Ball(3.0)).map_err(|e| e.to_string()))
-    {
+    match shapes::icosphere(4).map_err(|e| e.to_string()).and_then(|m| {
+        integral_curvature(&m, &IntegralOptions { neighborhood: Neighborhood::Ball(3.0) }).map_err(|e| e.to_string())
+    }) {
         Ok(ic) => v.at_most(
             "integral Gaussian curvature over the whole icosphere(4) - 4 pi",
             (ic.gaussian[0] - 4.0 * PI).abs(),

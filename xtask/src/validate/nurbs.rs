@@ -33,7 +33,7 @@ fn samples((a, b): (f64, f64), count: usize) -> impl Iterator<Item = f64> {
 
 /// Points of rational quadratic circles lie on their circle.
 fn circle(v: &mut Validator) {
-    let result = (|| -> mesh_nurbs::Result<f64> {
+    let result = (|| -> mesh_nurbs::error::Result<f64> {
         let mut worst = 0.0f64;
         for (center, r) in [(DVec3::ZERO, 1.0), (DVec3::new(0.3, -1.2, 2.0), 2.5)] {
             let c = shapes::circle(center, r)?;
@@ -55,7 +55,7 @@ fn frame_errors(
     s: &NurbsSurface,
     margin_v: f64,
     exact: impl Fn(&SurfaceFrame) -> (f64, f64),
-) -> mesh_nurbs::Result<(f64, f64, usize)> {
+) -> mesh_nurbs::error::Result<(f64, f64, usize)> {
     let (v0, v1) = s.domain_v();
     let (mut ek, mut eh, mut count) = (0.0f64, 0.0f64, 0);
     for u in samples(s.domain_u(), 100) {
@@ -107,7 +107,7 @@ fn torus_frames(v: &mut Validator) {
 
 /// The basis functions of a span sum to one and are non-negative.
 fn partition_of_unity(v: &mut Validator) {
-    let result = (|| -> mesh_nurbs::Result<(f64, f64)> {
+    let result = (|| -> mesh_nurbs::error::Result<(f64, f64)> {
         let knots = [
             KnotVector::clamped_uniform(3, 8)?,
             KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 0.1, 0.15, 0.5, 0.5, 0.9, 1.0, 1.0, 1.0, 1.0])?,
@@ -135,7 +135,7 @@ fn partition_of_unity(v: &mut Validator) {
 
 /// The inscribed tessellation's area tends to 4 pi r^2 at order 2.
 fn sphere_area(v: &mut Validator) {
-    let result = (|| -> mesh_nurbs::Result<Vec<f64>> {
+    let result = (|| -> mesh_nurbs::error::Result<Vec<f64>> {
         let s = shapes::sphere(DVec3::ZERO, 1.0)?;
         [8, 16, 32, 64]
             .iter()
@@ -200,7 +200,7 @@ fn estimator_errors(s: &NurbsSurface, segments_u: usize, segments_v: usize, keep
 /// [`estimator_errors`]).
 struct Case {
     name: &'static str,
-    surface: mesh_nurbs::Result<NurbsSurface>,
+    surface: mesh_nurbs::error::Result<NurbsSurface>,
     ratio: usize,
     keep: Keep,
     quantities: &'static [usize],

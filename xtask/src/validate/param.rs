@@ -9,7 +9,7 @@
 
 use mesh_kernel::glam::{DVec2, DVec3};
 use mesh_kernel::{shapes, TriMesh};
-use mesh_param::{parameterize, parameterize_cut, BoundaryMap, Method, Options, ParamError};
+use mesh_param::{parameterize, parameterize_cut, BoundaryMap, ParamError, ParamMethod, ParamOptions};
 
 use super::{convergence_order, no_shared_data, shared_data, Validator};
 
@@ -23,8 +23,8 @@ pub fn run(v: &mut Validator) {
     shared_meshes(v);
 }
 
-fn map(mesh: &TriMesh, method: Method, boundary: BoundaryMap) -> Result<mesh_param::Parameterization, ParamError> {
-    parameterize(mesh, &Options { method, boundary, ..Options::default() })
+fn map(mesh: &TriMesh, method: ParamMethod, boundary: BoundaryMap) -> Result<mesh_param::Parameterization, ParamError> {
+    parameterize(mesh, &ParamOptions { method, boundary, ..ParamOptions::default() })
 }
 
 /// The boundary vertices with positions given by `f`.
@@ -70,7 +70,12 @@ fn planar_reproduction(v: &mut Validator) {
         Err(e) => return v.error("planar disk", e),
     };
     let truth: Vec<DVec2> = m.positions().iter().map(|p| xy(*p)).collect();
-    for method in [Method::Harmonic, Method::MeanValue, Method::Authalic, Method::Intrinsic { lambda: 0.5, mu: 0.5 }] {
+    for method in [
+        ParamMethod::Harmonic,
+        ParamMethod::MeanValue,
+        ParamMethod::Authalic,
+        ParamMethod::Intrinsic { lambda: 0.5, mu: 0.5 },
+    ] {
         let name = format!("planar disk 2791v, own boundary: {} max error", method.name());
         match map(&m, method, own_boundary(&m, xy)) {
             Ok(p) => v.at_most(name, max_distance(&p.uv, &truth), 1e-13),
@@ -81,7 +86,7 @@ fn planar_reproduction(v: &mut Validator) {
         let name = format!("planar disk, LSCM = input up to similarity (rings {rings}), relative");
         match planar_disk(rings).map_err(ParamError::from).and_then(|m| {
             let truth: Vec<DVec2> = m.positions().iter().map(|p| xy(*p)).collect();
-            map(&m, Method::Lscm, BoundaryMap::default()).map(|p| similarity_residual(&truth, &p.uv))
+            map(&m, ParamMethod::Lscm, BoundaryMap::default()).map(|p| similarity_residual(&truth, &p.uv))
         }) {
             // Two pins leave a system whose condition grows faster than n.
             Ok(r) => v.at_most(name, r, 1e-16 * (1.0 + 3.0 * (rings * (rings + 1)) as f64).powf(1.5)),
@@ -105,7 +110,7 @@ fn convex_boundary_theorems(v: &mut Validator) {
             }
         }
         count += 1;
-        for (k, method) in [Method::Tutte, Method::MeanValue].into_iter().enumerate() {
+        for (k, method) in [ParamMethod::Tutte, ParamMethod::MeanValue].into_iter().enumerate() {
             let ok = map(&m, method, BoundaryMap::default()).is_ok_and(|p| p.report.summary.bijective);
             failures[k] += i64::from(!ok);
         }
@@ -120,11 +125,15 @@ fn intrinsic_endpoints(v: &mut Validator) {
         p.z = 0.4 * (2.0 * p.x).sin() * p.y;
     }
     let pairs = [
-        ("intrinsic mu = 0 vs harmonic, max difference", Method::Intrinsic { lambda: 1.0, mu: 0.0 }, Method::Harmonic),
+        (
+            "intrinsic mu = 0 vs harmonic, max difference",
+            ParamMethod::Intrinsic { lambda: 1.0, mu: 0.0 },
+            ParamMethod::Harmonic,
+        ),
         (
             "intrinsic lambda = 0 vs authalic, max difference",
-            Method::Intrinsic { lambda: 0.0, mu: 1.0 },
-            Method::Authalic,
+            ParamMethod::Intrinsic { lambda: 0.0, mu: 1.0 },
+            ParamMethod::Authalic,
         ),
     ];
     for (name, a, b) in pairs {
@@ -139,7 +148,7 @@ fn cylinder(v: &mut Validator) {
     let name = "cylinder 48x10 cut open, LSCM: |Dirichlet energy / area - 1|";
     match shapes::cylinder(1.0, 2.0, 48, 10)
         .map_err(ParamError::from)
-        .and_then(|m| parameterize_cut(&m, &Options { method: Method::Lscm, ..Options::default() }))
+        .and_then(|m| parameterize_cut(&m, &ParamOptions { method: ParamMethod::Lscm, ..ParamOptions::default() }))
     {
         Ok(p) => {
             v.at_most(name, (p.param.report.summary.dirichlet_area_ratio - 1.0).abs(), 1e-10);
@@ -161,7 +170,7 @@ fn hemisphere(v: &mut Validator) {
             *p = DVec3::new(2.0 * p.x, 2.0 * p.y, 1.0 - r2) / (1.0 + r2);
         }
         let truth: Vec<DVec2> = m.positions().iter().map(|p| stereographic(*p)).collect();
-        match map(&m, Method::Harmonic, own_boundary(&m, stereographic)) {
+        match map(&m, ParamMethod::Harmonic, own_boundary(&m, stereographic)) {
             Ok(p) => errors.push(max_distance(&p.uv, &truth)),
             Err(e) => return v.error("hemisphere harmonic map", e),
         }
@@ -190,9 +199,9 @@ fn shared_meshes(v: &mut Validator) {
             }
         };
         let disk = mesh_param::Topology::of(&mesh).is_ok_and(|t| t.is_disk());
-        for method in [Method::Tutte, Method::Harmonic, Method::Lscm] {
+        for method in [ParamMethod::Tutte, ParamMethod::Harmonic, ParamMethod::Lscm] {
             let name = format!("{file}: {} map bijective", method.name());
-            match parameterize_cut(&mesh, &Options { method, ..Options::default() }) {
+            match parameterize_cut(&mesh, &ParamOptions { method, ..ParamOptions::default() }) {
                 Ok(p) => {
                     let s = p.param.report.summary;
                     let note = format!(
@@ -202,7 +211,7 @@ fn shared_meshes(v: &mut Validator) {
                         s.angle_distortion_mean
                     );
                     let finite = p.param.uv.iter().all(|q| q.is_finite());
-                    if method == Method::Lscm && !disk {
+                    if method == ParamMethod::Lscm && !disk {
                         // A free boundary of a cut mesh may overlap itself:
                         // reported, not required.
                         v.skip(name, format!("cut mesh, free boundary: bijective = {}; {note}", s.bijective));

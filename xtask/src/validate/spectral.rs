@@ -6,7 +6,7 @@
 
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{compression_curve, eigenpairs, Eigenpairs, HarmonicsOptions, ManifoldHarmonics, Options};
+use mesh_spectral::{compression_curve, eigenpairs, EigenOptions, Eigenpairs, HarmonicsOptions, ManifoldHarmonics};
 
 use super::{convergence_order, no_shared_data, shared_data, Validator};
 
@@ -33,9 +33,9 @@ fn orthonormality_error(pairs: &Eigenpairs, mass: &[f64]) -> f64 {
 /// default pencil, the same matrices as libigl's), and the masses.
 fn solve(mesh: &TriMesh, k: usize) -> Result<(Eigenpairs, Vec<f64>), mesh_spectral::SpectralError> {
     let l = operators::cotan_laplacian(mesh);
-    let m = operators::mass_matrix(mesh, MassKind::MixedVoronoi);
-    let pairs = eigenpairs(&l, &m, k, &Options::default())?;
-    Ok((pairs, operators::lumped_mass(mesh, MassKind::MixedVoronoi)))
+    let mass = operators::lumped_mass(mesh, MassKind::MixedVoronoi);
+    let pairs = eigenpairs(&l, &mass, k, &EigenOptions::default())?;
+    Ok((pairs, mass))
 }
 
 /// Residuals <= 1e-8 and M-orthonormality <= 1e-10 (the bounds).

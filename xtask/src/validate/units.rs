@@ -17,7 +17,7 @@ use mesh_geodesic::{
 use mesh_kernel::clean::{clean, CleanOptions};
 use mesh_kernel::glam::{DVec2, DVec3};
 use mesh_kernel::{geometry, shapes, TriMesh, VertexId};
-use mesh_param::{parameterize, Method, Options as ParamOptions};
+use mesh_param::{parameterize, ParamMethod, ParamOptions};
 use mesh_spectral::{HarmonicsOptions, ManifoldHarmonics};
 
 use super::Validator;
@@ -215,21 +215,21 @@ fn counts(mesh: &TriMesh, r: &mesh_kernel::clean::CleanReport) -> Vec<f64> {
 /// Parameterizations, as `u v` of every vertex divided by the map's size
 /// (most methods fix the boundary on a unit circle; free-boundary ones carry
 /// the mesh's unit, and the size takes it out).
-fn uv(m: &TriMesh, method: Method) -> Result<Vec<f64>, String> {
+fn uv(m: &TriMesh, method: ParamMethod) -> Result<Vec<f64>, String> {
     let p = parameterize(m, &ParamOptions { method, ..Default::default() }).map_err(|e| e.to_string())?;
     let size = p.uv.iter().fold(0.0_f64, |s, q| s.max(q.length()));
     Ok(p.uv.iter().flat_map(|q: &DVec2| [q.x / size, q.y / size]).collect())
 }
 
 const DISK: &[Operation] = &[
-    ("Tutte", 0, |m| uv(m, Method::Tutte)),
-    ("mean value", 0, |m| uv(m, Method::MeanValue)),
-    ("harmonic", 0, |m| uv(m, Method::Harmonic)),
-    ("authalic", 0, |m| uv(m, Method::Authalic)),
-    ("LSCM", 0, |m| uv(m, Method::Lscm)),
-    ("ARAP", 0, |m| uv(m, Method::Arap { iterations: 10 })),
+    ("Tutte", 0, |m| uv(m, ParamMethod::Tutte)),
+    ("mean value", 0, |m| uv(m, ParamMethod::MeanValue)),
+    ("harmonic", 0, |m| uv(m, ParamMethod::Harmonic)),
+    ("authalic", 0, |m| uv(m, ParamMethod::Authalic)),
+    ("LSCM", 0, |m| uv(m, ParamMethod::Lscm)),
+    ("ARAP", 0, |m| uv(m, ParamMethod::Arap { iterations: 10 })),
     ("distortion of the harmonic map (angle and area, means and maxima)", 0, |m| {
-        let p = parameterize(m, &ParamOptions { method: Method::Harmonic, ..Default::default() })
+        let p = parameterize(m, &ParamOptions { method: ParamMethod::Harmonic, ..Default::default() })
             .map_err(|e| e.to_string())?;
         let s = &p.report.summary;
         Ok(vec![s.angle_distortion_mean, s.angle_distortion_max, s.area_distortion_mean, s.area_distortion_max])

@@ -11,8 +11,8 @@ use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
 use mesh_wavelet::rules::loop_beta;
 use mesh_wavelet::{
-    decay_rate, detect, inner_product_matrix, subdivide, FilterBank, Hierarchy, Multiresolution, Options, Scheme,
-    WaveletError, WaveletKind,
+    decay_rate, detect, inner_product_matrix, subdivide, FilterBank, Hierarchy, MultiresOptions, Multiresolution,
+    Scheme, SubdivideOptions, WaveletError, WaveletKind,
 };
 
 use super::{no_shared_data, shared_data, Validator};
@@ -31,8 +31,8 @@ pub fn run(v: &mut Validator) {
     detection(v);
 }
 
-fn options(scheme: Scheme, wavelet: WaveletKind) -> Options {
-    Options { scheme, wavelet, ..Options::default() }
+fn options(scheme: Scheme, wavelet: WaveletKind) -> MultiresOptions {
+    MultiresOptions { scheme, wavelet, ..MultiresOptions::default() }
 }
 
 fn max_distance(a: &TriMesh, b: &TriMesh) -> f64 {
@@ -45,7 +45,7 @@ fn diagonal(m: &TriMesh) -> f64 {
 
 /// A torus base mesh split `levels` times, projected onto the exact torus.
 fn smooth_torus(levels: usize) -> Result<TriMesh, WaveletError> {
-    let fine = subdivide(&shapes::torus(2.0, 0.5, 12, 6)?, Scheme::Midpoint, levels)?;
+    let fine = subdivide(&shapes::torus(2.0, 0.5, 12, 6)?, &SubdivideOptions { scheme: Scheme::Midpoint, levels })?;
     let p = fine
         .positions()
         .iter()
@@ -94,7 +94,7 @@ fn reconstruction(v: &mut Validator) {
         for levels in 1..=5 {
             for scheme in Scheme::ALL {
                 for wavelet in KINDS {
-                    let o = Options { scheme, wavelet, max_levels: levels };
+                    let o = MultiresOptions { scheme, wavelet, max_levels: levels };
                     match Multiresolution::analyze(&mesh, &o).and_then(|mr| mr.synthesize()) {
                         Ok(back) => worst = worst.max(max_distance(&mesh, &back) / diagonal(&mesh)),
                         Err(e) => failure = Some(e),
@@ -252,7 +252,7 @@ fn butterfly_cubic_precision(v: &mut Validator) {
         let g = shapes::grid(1.0, 1.0, n, n)?;
         let p = g.positions().iter().map(|p| DVec3::new(p.x, p.y, cubic(p.x, p.y))).collect();
         let m = TriMesh::new(p, g.faces().to_vec())?;
-        let s = subdivide(&m, Scheme::Butterfly, 1)?;
+        let s = subdivide(&m, &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 })?;
         let h = 1.0 / n as f64;
         let mut worst: f64 = 0.0;
         for p in &s.positions()[m.vertex_count()..] {
@@ -283,7 +283,10 @@ fn loop_limit(v: &mut Validator) {
         let sum: DVec3 = c.neighbors(v0).map(|u| ico.position(u)).sum();
         let limit = (1.0 - n as f64 * w) * ico.position(v0) + w * sum;
         let errors: Vec<f64> = (5..=7)
-            .map(|l| subdivide(&ico, Scheme::Loop, l).map(|s| s.positions()[0].distance(limit)))
+            .map(|l| {
+                subdivide(&ico, &SubdivideOptions { scheme: Scheme::Loop, levels: l })
+                    .map(|s| s.positions()[0].distance(limit))
+            })
             .collect::<Result<_, _>>()?;
         Ok((errors[2], (errors[2] / errors[1]).max(errors[1] / errors[0])))
     };
@@ -306,7 +309,7 @@ fn detection(v: &mut Validator) {
     {
         let run = || -> Result<(usize, usize, usize, f64), WaveletError> {
             let base = base.clone()?;
-            let fine = subdivide(&base, Scheme::Loop, 3)?;
+            let fine = subdivide(&base, &SubdivideOptions { scheme: Scheme::Loop, levels: 3 })?;
             // Reverse the vertex order: the hierarchy is lost.
             let n = fine.vertex_count() as u32;
             let p: Vec<DVec3> = fine.positions().iter().rev().copied().collect();

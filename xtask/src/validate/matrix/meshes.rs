@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::{shapes, TriMesh};
-use mesh_wavelet::Scheme;
+use mesh_wavelet::{Scheme, SubdivideOptions};
 
 /// How a row's results are judged.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -119,7 +119,8 @@ fn duplicates() -> Result<TriMesh, String> {
 /// operation is defined.
 fn control() -> Result<TriMesh, String> {
     let base = shapes::grid(1.0, 1.0, 2, 2).map_err(|e| e.to_string())?;
-    let mut m = mesh_wavelet::subdivide(&base, Scheme::Midpoint, 2).map_err(|e| e.to_string())?;
+    let mut m = mesh_wavelet::subdivide(&base, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 2 })
+        .map_err(|e| e.to_string())?;
     for q in m.positions_mut() {
         q.z = 0.1 * (3.0 * q.x).sin() * (2.0 * q.y).cos();
     }

@@ -8,19 +8,19 @@
 use std::f64::consts::TAU;
 
 use mesh_curvature::{
-    curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, pointwise_curvature, Method as Estimator,
-    Neighborhood, TensorOptions,
+    curvature_tensor, gaussian_curvature, integral_curvature, mean_curvature, pointwise_curvature, IntegralOptions,
+    Neighborhood, TensorMethod as Estimator, TensorOptions,
 };
 use mesh_geodesic::{
     dijkstra, exact_distance, fmm_distance, heat_distance, trace_path, ExactOptions, FmmOptions, HeatOptions,
     SurfacePoint, TraceOptions,
 };
 use mesh_kernel::{TriMesh, VertexId};
-use mesh_param::{atlas, parameterize, parameterize_cut, AtlasOptions, Method, Options};
+use mesh_param::{atlas, parameterize, parameterize_cut, AtlasOptions, ParamMethod, ParamOptions};
 use mesh_spectral::{
     compress, filter, heat_kernel_signature, hks_times, HarmonicsOptions, ManifoldHarmonics, Transfer,
 };
-use mesh_wavelet::{subdivide, Multiresolution, Scheme};
+use mesh_wavelet::{subdivide, Multiresolution, Scheme, SubdivideOptions};
 
 use super::check::{distance as chord_length, uv, xyz, Out};
 use super::Op;
@@ -39,13 +39,13 @@ pub const OPS: &[Op] = &[
     ("geodesic", "heat", |m| distance(m, false, |m, s| heat_distance(m, s, &HeatOptions::default()))),
     ("geodesic", "exact", exact),
     ("geodesic", "trace", trace),
-    ("param", "tutte", |m| param(m, Method::Tutte)),
-    ("param", "mean-value", |m| param(m, Method::MeanValue)),
-    ("param", "harmonic", |m| param(m, Method::Harmonic)),
-    ("param", "authalic", |m| param(m, Method::Authalic)),
-    ("param", "intrinsic", |m| param(m, Method::Intrinsic { lambda: 0.5, mu: 0.5 })),
-    ("param", "lscm", |m| param(m, Method::Lscm)),
-    ("param", "arap", |m| param(m, Method::Arap { iterations: 5 })),
+    ("param", "tutte", |m| param(m, ParamMethod::Tutte)),
+    ("param", "mean-value", |m| param(m, ParamMethod::MeanValue)),
+    ("param", "harmonic", |m| param(m, ParamMethod::Harmonic)),
+    ("param", "authalic", |m| param(m, ParamMethod::Authalic)),
+    ("param", "intrinsic", |m| param(m, ParamMethod::Intrinsic { lambda: 0.5, mu: 0.5 })),
+    ("param", "lscm", |m| param(m, ParamMethod::Lscm)),
+    ("param", "arap", |m| param(m, ParamMethod::Arap { iterations: 5 })),
     ("param", "cut + tutte", cut),
     ("param", "atlas", atlas_op),
     ("spectral", "eigenpairs", eigen),
@@ -92,7 +92,7 @@ fn tensor(m: &TriMesh, method: Estimator) -> Result<Out, String> {
 }
 
 fn integral(m: &TriMesh) -> Result<Out, String> {
-    let c = integral_curvature(m, Neighborhood::Rings(1)).map_err(e)?;
+    let c = integral_curvature(m, &IntegralOptions { neighborhood: Neighborhood::Rings(1) }).map_err(e)?;
     Ok(Out::default().field("gaussian", 0, c.gaussian).field("mean", 1, c.mean).field("area", 2, c.area))
 }
 
@@ -126,7 +126,7 @@ fn distance_checks(m: &TriMesh, d: Vec<f64>, name: &'static str, chord: bool) ->
 fn distance(
     m: &TriMesh,
     chord: bool,
-    f: impl Fn(&TriMesh, &[VertexId]) -> mesh_geodesic::Result<Vec<f64>>,
+    f: impl Fn(&TriMesh, &[VertexId]) -> mesh_geodesic::error::Result<Vec<f64>>,
 ) -> Result<Out, String> {
     let d = f(m, &[VertexId(0)]).map_err(e)?;
     Ok(distance_checks(m, d, "distance", chord))
@@ -161,9 +161,9 @@ fn trace(m: &TriMesh) -> Result<Out, String> {
 
 /// A map into the unit square (normalized); Tutte's and Floater's maps onto
 /// a convex boundary are bijective by theorem.
-fn param(m: &TriMesh, method: Method) -> Result<Out, String> {
-    let p = parameterize(m, &Options { method, ..Options::default() }).map_err(e)?;
-    let theorem = matches!(method, Method::Tutte | Method::MeanValue);
+fn param(m: &TriMesh, method: ParamMethod) -> Result<Out, String> {
+    let p = parameterize(m, &ParamOptions { method, ..ParamOptions::default() }).map_err(e)?;
+    let theorem = matches!(method, ParamMethod::Tutte | ParamMethod::MeanValue);
     Ok(Out::default()
         .field("uv", 0, uv(&p.uv))
         .require(p.uv.len() == m.vertex_count(), || "one uv per vertex".into())
@@ -177,7 +177,7 @@ fn param(m: &TriMesh, method: Method) -> Result<Out, String> {
 /// short, and which one wins depends on the rounding of the coordinates,
 /// hence on the unit.
 fn cut(m: &TriMesh) -> Result<Out, String> {
-    let p = parameterize_cut(m, &Options { method: Method::Tutte, ..Options::default() }).map_err(e)?;
+    let p = parameterize_cut(m, &ParamOptions { method: ParamMethod::Tutte, ..ParamOptions::default() }).map_err(e)?;
     Ok(Out::default()
         .counts("faces", vec![p.param.report.summary.faces as f64])
         .require(p.param.report.summary.bijective, || "not bijective".into()))
@@ -248,7 +248,7 @@ fn hks(m: &TriMesh) -> Result<Out, String> {
 
 /// One level: four faces per face.
 fn subdivision(m: &TriMesh, scheme: Scheme) -> Result<Out, String> {
-    let s = subdivide(m, scheme, 1).map_err(e)?;
+    let s = subdivide(m, &SubdivideOptions { scheme, levels: 1 }).map_err(e)?;
     Ok(Out::default()
         .field("positions", 1, xyz(s.positions()))
         .require(s.face_count() == 4 * m.face_count(), || format!("{} faces from {}", s.face_count(), m.face_count())))

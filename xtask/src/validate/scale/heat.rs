@@ -14,7 +14,7 @@
 
 use mesh_geodesic::{exact_distance, fmm_distance, ExactOptions, FmmOptions, HeatGeodesics, HeatOptions, HeatStatus};
 use mesh_kernel::{TriMesh, VertexId};
-use mesh_wavelet::Scheme;
+use mesh_wavelet::{Scheme, SubdivideOptions};
 
 use super::{no_shared_data, shared_data, strip, ScaleMeshes, Validator};
 
@@ -108,9 +108,10 @@ fn reference_error(v: &mut Validator) {
     let Some(dir) = shared_data() else {
         return v.skip(name, no_shared_data());
     };
-    let mesh = mesh_io::read(dir.join("npm_bunny.obj"))
-        .map_err(|e| e.to_string())
-        .and_then(|d| mesh_wavelet::subdivide(&d.mesh, Scheme::Loop, 2).map_err(|e| e.to_string()));
+    let mesh = mesh_io::read(dir.join("npm_bunny.obj")).map_err(|e| e.to_string()).and_then(|d| {
+        mesh_wavelet::subdivide(&d.mesh, &SubdivideOptions { scheme: Scheme::Loop, levels: 2 })
+            .map_err(|e| e.to_string())
+    });
     let fields = mesh.and_then(|m| {
         let exact = exact_distance(&m, &[VertexId(0)], &ExactOptions { max_windows: 200_000_000 })
             .map_err(|e| e.to_string())?;

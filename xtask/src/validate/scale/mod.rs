@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use mesh_kernel::{shapes, TriMesh};
-use mesh_wavelet::Scheme;
+use mesh_wavelet::{Scheme, SubdivideOptions};
 
 use super::{no_shared_data, shared_data, Validator};
 
@@ -46,7 +46,8 @@ impl ScaleMeshes {
         self.bunny_loop4
             .get_or_init(|| {
                 let bunny = read(&shared_data().ok_or_else(no_shared_data)?.join("npm_bunny.obj"))?;
-                mesh_wavelet::subdivide(&bunny, Scheme::Loop, 4).map_err(|e| e.to_string())
+                mesh_wavelet::subdivide(&bunny, &SubdivideOptions { scheme: Scheme::Loop, levels: 4 })
+                    .map_err(|e| e.to_string())
             })
             .as_ref()
             .map_err(String::as_str)

@@ -14,7 +14,7 @@ use std::time::Instant;
 use mesh_kernel::clean::CleanOptions;
 use mesh_kernel::glam::DVec2;
 use mesh_kernel::TriMesh;
-use mesh_param::{atlas, Atlas, AtlasOptions, Method, UvRect};
+use mesh_param::{atlas, Atlas, AtlasOptions, ParamMethod, UvRect};
 
 use super::{ScaleMeshes, Validator};
 
@@ -36,10 +36,10 @@ pub fn run(v: &mut Validator, meshes: &ScaleMeshes) {
             }
         };
         let mesh = cleaned.as_ref().unwrap_or(mesh);
-        for method in [Method::Tutte, Method::Harmonic, Method::Lscm] {
+        for method in [ParamMethod::Tutte, ParamMethod::Harmonic, ParamMethod::Lscm] {
             check_method(v, name, mesh, method, None);
         }
-        check_method(v, name, mesh, Method::Tutte, Some((5000, 2.0)));
+        check_method(v, name, mesh, ParamMethod::Tutte, Some((5000, 2.0)));
     }
 }
 
@@ -57,7 +57,7 @@ fn manifold(mesh: &TriMesh) -> Result<Option<TriMesh>, String> {
 
 /// One atlas and its checks; `split` bounds the charts (faces, mean area
 /// distortion).
-fn check_method(v: &mut Validator, name: &str, mesh: &TriMesh, method: Method, split: Option<(usize, f64)>) {
+fn check_method(v: &mut Validator, name: &str, mesh: &TriMesh, method: ParamMethod, split: Option<(usize, f64)>) {
     let bound = split.map_or(String::new(), |(n, d)| format!(", charts <= ~{n} faces, area distortion <= {d}"));
     let label = format!("{name} {}{bound}", method.name());
     let options = AtlasOptions {
@@ -86,7 +86,7 @@ fn check_method(v: &mut Validator, name: &str, mesh: &TriMesh, method: Method, s
     v.equal(format!("{label}: faces with a UV outside [0, 1]^2 or not finite"), found.outside_square as i64, 0);
     v.equal(format!("{label}: faces outside their chart's box"), found.outside_box as i64, 0);
     v.equal(format!("{label}: pairs of chart boxes that meet"), found.meeting_boxes as i64, 0);
-    if method == Method::Tutte {
+    if method == ParamMethod::Tutte {
         v.equal(format!("{label}: flipped faces"), found.flipped as i64, 0);
         v.equal(format!("{label}: collapsed faces (zero-area surface faces included)"), found.collapsed as i64, 0);
     }
