@@ -18,24 +18,3 @@ where
 {
     PossibleValuesParser::new(names).try_map(|s| s.parse::<T>())
 }
-
-/// `Display` and `FromStr` of an enum of the command line's own (a choice
-/// that no library type holds) from its `ALL` and `name()`, as the library
-/// crates write theirs.
-macro_rules! named {
-    ($t:ty) => {
-        impl std::fmt::Display for $t {
-            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                f.write_str(self.name())
-            }
-        }
-
-        impl std::str::FromStr for $t {
-            type Err = String;
-            fn from_str(s: &str) -> Result<Self, String> {
-                Self::ALL.into_iter().find(|x| x.name() == s).ok_or_else(|| format!("unknown name `{s}`"))
-            }
-        }
-    };
-}
-pub(crate) use named;

@@ -22,7 +22,7 @@
 use glam::DVec3;
 use mesh_kernel::TriMesh;
 
-use crate::error::Result;
+use crate::error::{CurvatureError, Result};
 use crate::frame::{solve_spd, tangent_basis, InverseBlock, Sym2};
 use crate::neighborhood::{Adjacency, Gatherer, Neighborhood};
 use crate::status::{topological_status, VertexStatus};
@@ -74,7 +74,7 @@ impl Degree {
     }
 }
 
-crate::error::named_enum!(Degree, "degree");
+mesh_kernel::named_choice!(Degree, "degree", CurvatureError);
 
 /// Options of [`crate::TensorMethod::Fit`]. The default, a quartic through the
 /// 2-ring positions with the tangent plane refined, is the most accurate

@@ -100,7 +100,7 @@ impl TensorMethod {
     }
 }
 
-crate::error::named_enum!(TensorMethod, "method");
+mesh_kernel::named_choice!(TensorMethod, "method", CurvatureError);
 
 /// Options of [`curvature_tensor`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -41,7 +41,7 @@ impl SamplingMetric {
     }
 }
 
-crate::error::named_enum!(SamplingMetric, "metric");
+mesh_kernel::named_choice!(SamplingMetric, "metric", GeodesicError);
 
 /// Options of [`farthest_point_sampling`] and [`geodesic_voronoi`].
 #[derive(Debug, Clone, PartialEq, Default)]

@@ -24,7 +24,6 @@ use std::sync::OnceLock;
 use glam::DVec3;
 use sprs::CsMat;
 
-use crate::choice::Choice;
 use crate::error::Result;
 use crate::geometry::{self, NormalWeighting};
 use crate::mesh::TriMesh;
@@ -36,8 +35,8 @@ pub(crate) struct Cache {
     face_areas: OnceLock<Vec<f64>>,
     face_normals: OnceLock<Vec<DVec3>>,
     corner_angles: OnceLock<Vec<[f64; 3]>>,
-    vertex_normals: [OnceLock<Vec<DVec3>>; 4],
-    lumped_mass: [OnceLock<Vec<f64>>; 3],
+    vertex_normals: [OnceLock<Vec<DVec3>>; NormalWeighting::ALL.len()],
+    lumped_mass: [OnceLock<Vec<f64>>; MassKind::ALL.len()],
     halfedge_cotans: OnceLock<Vec<f64>>,
     cotan_laplacian: OnceLock<CsMat<f64>>,
     intrinsic: OnceLock<Result<IntrinsicTriangulation>>,
@@ -53,11 +52,6 @@ pub(crate) struct Cache {
 pub struct Geometry<'a> {
     mesh: &'a TriMesh,
     cache: &'a Cache,
-}
-
-/// Slot of a variant in a per-variant array.
-fn slot<T: Choice>(v: T) -> usize {
-    T::ALL.iter().position(|x| *x == v).unwrap_or(0)
 }
 
 impl<'a> Geometry<'a> {
@@ -82,12 +76,12 @@ impl<'a> Geometry<'a> {
 
     /// Unit vertex normals with the given weighting ([`geometry::vertex_normals`]).
     pub fn vertex_normals(&self, weighting: NormalWeighting) -> &'a [DVec3] {
-        self.cache.vertex_normals[slot(weighting)].get_or_init(|| geometry::vertex_normals(self.mesh, weighting))
+        self.cache.vertex_normals[weighting as usize].get_or_init(|| geometry::vertex_normals(self.mesh, weighting))
     }
 
     /// Lumped vertex areas of the given kind ([`operators::lumped_mass`]).
     pub fn lumped_mass(&self, kind: MassKind) -> &'a [f64] {
-        self.cache.lumped_mass[slot(kind)].get_or_init(|| operators::lumped_mass(self.mesh, kind))
+        self.cache.lumped_mass[kind as usize].get_or_init(|| operators::lumped_mass(self.mesh, kind))
     }
 
     /// The cotangent opposite every half-edge `3 f + k` ([`operators::halfedge_cotans`]).
@@ -144,6 +138,16 @@ impl<'a> Geometry<'a> {
 mod tests {
     use crate::operators::{self, LaplacianKind, MassKind};
     use crate::shapes;
+
+    #[test]
+    fn per_choice_slots_follow_the_declaration_order() {
+        for (i, w) in crate::geometry::NormalWeighting::ALL.into_iter().enumerate() {
+            assert_eq!(w as usize, i, "{w}");
+        }
+        for (i, k) in MassKind::ALL.into_iter().enumerate() {
+            assert_eq!(k as usize, i, "{k}");
+        }
+    }
 
     #[test]
     fn cached_quantities_equal_the_free_functions_and_are_dropped_when_vertices_move() {

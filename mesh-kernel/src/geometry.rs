@@ -10,6 +10,7 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::error::MeshError;
 use crate::ids::{EdgeId, FaceId};
 use crate::mesh::TriMesh;
 use crate::par;
@@ -193,12 +194,22 @@ pub enum NormalWeighting {
     Max,
 }
 
-impl crate::choice::Choice for NormalWeighting {
-    const ALL: &'static [Self] = &[Self::Uniform, Self::Area, Self::Angle, Self::Max];
-    const NAMES: &'static [&'static str] = &["uniform", "area", "angle", "max"];
-    const WHAT: &'static str = "normals";
+crate::named_choice!(NormalWeighting, "normals", MeshError);
+
+impl NormalWeighting {
+    /// Every choice, in the order of the names `uniform`, `area`, `angle`, `max`.
+    pub const ALL: [Self; 4] = [Self::Uniform, Self::Area, Self::Angle, Self::Max];
+
+    /// The name parsed and displayed.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Uniform => "uniform",
+            Self::Area => "area",
+            Self::Angle => "angle",
+            Self::Max => "max",
+        }
+    }
 }
-crate::choice_str!(NormalWeighting);
 
 /// Unit vertex normals: the normalized weighted sum of incident face normals.
 /// Isolated vertices, and vertices whose weighted sum vanishes, get zero

@@ -71,8 +71,8 @@ impl BoundaryMap {
     }
 }
 
-crate::error::named_enum!(Spacing, "spacing");
-crate::error::named_enum!(BoundaryMap, "boundary");
+mesh_kernel::named_choice!(Spacing, "spacing", ParamError);
+mesh_kernel::named_choice!(BoundaryMap, "boundary", ParamError);
 
 /// Cumulative parameter t_k in [0, 1) of each vertex of a closed loop:
 /// uniform, or by chord length (zero-length edges get a small positive share

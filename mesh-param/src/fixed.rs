@@ -41,7 +41,7 @@ impl DegeneratePolicy {
     }
 }
 
-crate::error::named_enum!(DegeneratePolicy, "degenerate");
+mesh_kernel::named_choice!(DegeneratePolicy, "degenerate", ParamError);
 
 /// The matrix L of eq. 2.13 for `weights`: `(L q)_i = sum_j w_ij (q_i - q_j)`,
 /// assembled on the edge pattern in O(V + F): each face is measured once and

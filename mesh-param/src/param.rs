@@ -107,7 +107,7 @@ impl ParamMethod {
     }
 }
 
-crate::error::named_enum!(ParamMethod, "method");
+mesh_kernel::named_choice!(ParamMethod, "method", ParamError);
 
 /// Options of [`parameterize`].
 #[derive(Debug, Clone, PartialEq)]

@@ -1,5 +1,7 @@
 //! Names of the refinement schemes and of the wavelet constructions.
 
+use crate::error::WaveletError;
+
 /// A refinement rule for 4-to-1 splitting K^j -> K^{j+1} (the chapter's figure 2.13).
 ///
 /// Every scheme inserts one vertex per edge and splits each triangle into
@@ -48,7 +50,7 @@ impl Scheme {
     }
 }
 
-crate::error::named_enum!(Scheme, "scheme");
+mesh_kernel::named_choice!(Scheme, "scheme", WaveletError);
 
 /// Which wavelets complement the scaling functions of a [`Scheme`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -80,4 +82,4 @@ impl WaveletKind {
     }
 }
 
-crate::error::named_enum!(WaveletKind, "wavelet");
+mesh_kernel::named_choice!(WaveletKind, "wavelet", WaveletError);

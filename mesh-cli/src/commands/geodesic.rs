@@ -9,6 +9,7 @@
 //! there, by Fast Marching or restarted heat flows) and `unresolved` (1
 //! where it was not: `--far-field none`); `--json` counts both.
 
+use mesh_kernel::MeshError;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -101,7 +102,7 @@ impl Method {
     }
 }
 
-crate::choice::named!(Method);
+mesh_kernel::named_choice!(Method, "method", MeshError);
 
 /// Everything `mesh geodesic --json` prints.
 #[derive(Debug, Clone, Serialize)]

@@ -10,6 +10,7 @@
 //! (the chart of each face and its distortion, eq. 2.8-2.9), and prints
 //! what cleaning did, the charts and their distortion (eq. 2.8-2.11).
 
+use mesh_kernel::MeshError;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -106,7 +107,7 @@ impl CleanMode {
     }
 }
 
-crate::choice::named!(CleanMode);
+mesh_kernel::named_choice!(CleanMode, "clean", MeshError);
 
 /// What was done to make the input an oriented manifold.
 #[derive(Debug, Clone, Serialize)]

@@ -2,6 +2,7 @@
 //! per-vertex scalars or labels (a PLY property such as `mean`, `distance`
 //! or the curvature `flag`).
 
+use mesh_kernel::MeshError;
 use std::path::PathBuf;
 
 use crate::choice::choice;
@@ -99,7 +100,7 @@ fn vertex_field<'a>(data: &'a mesh_io::MeshData, name: &str) -> CliResult<std::b
     Err(format!("the input has no per-vertex scalar or label `{name}` (it has: {})", known.join(", ")).into())
 }
 
-crate::choice::named!(Up);
+mesh_kernel::named_choice!(Up, "up", MeshError);
 
 /// Runs `mesh render`.
 pub fn run(args: &Args) -> CliResult<()> {

@@ -73,7 +73,7 @@ impl FmmUpdate {
     }
 }
 
-crate::error::named_enum!(FmmUpdate, "update");
+mesh_kernel::named_choice!(FmmUpdate, "update", GeodesicError);
 
 /// Options of [`FastMarching`] and [`fmm_distance`].
 #[derive(Debug, Clone, PartialEq)]

@@ -91,7 +91,7 @@ impl HeatBoundary {
     }
 }
 
-crate::error::named_enum!(HeatBoundary, "boundary");
+mesh_kernel::named_choice!(HeatBoundary, "boundary", GeodesicError);
 
 /// Options of [`HeatGeodesics`] and [`heat_distance`].
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,7 @@
 //! What the heat method reports per vertex, and what continues it where
 //! the heat flow is not resolved (see the `far` module of [`super`]).
 
-use crate::error::named_enum;
+use crate::error::GeodesicError;
 
 /// What computes the distance where the heat flow is not resolved.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -44,7 +44,7 @@ impl HeatFarField {
     }
 }
 
-named_enum!(HeatFarField, "far_field");
+mesh_kernel::named_choice!(HeatFarField, "far_field", GeodesicError);
 
 /// How the distance of one vertex was obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

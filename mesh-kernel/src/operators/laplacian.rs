@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::pattern::EdgePattern;
 use crate::clean::is_degenerate_triangle;
+use crate::error::MeshError;
 use crate::mesh::TriMesh;
 use crate::par;
 
@@ -32,14 +33,21 @@ pub enum LaplacianKind {
     IntrinsicDelaunay,
 }
 
-impl crate::choice::Choice for LaplacianKind {
-    const ALL: &'static [Self] = &[Self::Auto, Self::Cotan, Self::IntrinsicDelaunay];
-    const NAMES: &'static [&'static str] = &["auto", "cotan", "intrinsic"];
-    const WHAT: &'static str = "laplacian";
-}
-crate::choice_str!(LaplacianKind);
+crate::named_choice!(LaplacianKind, "laplacian", MeshError);
 
 impl LaplacianKind {
+    /// Every choice, in the order of the names `auto`, `cotan`, `intrinsic`.
+    pub const ALL: [Self; 3] = [Self::Auto, Self::Cotan, Self::IntrinsicDelaunay];
+
+    /// The name parsed and displayed.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Cotan => "cotan",
+            Self::IntrinsicDelaunay => "intrinsic",
+        }
+    }
+
     /// The Laplacian `self` stands for on `mesh` (never `Auto`) and the
     /// number of zero-area faces (relative area at most
     /// [`DEGENERATE_TOLERANCE`]) that decided it. O(F).

@@ -4,6 +4,7 @@
 use sprs::CsMat;
 
 use super::pattern::EdgePattern;
+use crate::error::MeshError;
 use crate::geometry::triangle_area;
 use crate::mesh::TriMesh;
 
@@ -23,12 +24,21 @@ pub enum MassKind {
     Galerkin,
 }
 
-impl crate::choice::Choice for MassKind {
-    const ALL: &'static [Self] = &[Self::Barycentric, Self::MixedVoronoi, Self::Galerkin];
-    const NAMES: &'static [&'static str] = &["barycentric", "voronoi", "galerkin"];
-    const WHAT: &'static str = "mass";
+crate::named_choice!(MassKind, "mass", MeshError);
+
+impl MassKind {
+    /// Every choice, in the order of the names `barycentric`, `voronoi`, `galerkin`.
+    pub const ALL: [Self; 3] = [Self::Barycentric, Self::MixedVoronoi, Self::Galerkin];
+
+    /// The name parsed and displayed.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Barycentric => "barycentric",
+            Self::MixedVoronoi => "voronoi",
+            Self::Galerkin => "galerkin",
+        }
+    }
 }
-crate::choice_str!(MassKind);
 
 /// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
 /// the Galerkin matrix, which equals the barycentric area. Isolated vertices

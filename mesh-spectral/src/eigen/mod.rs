@@ -81,7 +81,7 @@ impl ComponentSelection {
     }
 }
 
-crate::error::named_enum!(ComponentSelection, "component");
+mesh_kernel::named_choice!(ComponentSelection, "component", SpectralError);
 
 /// Options of [`eigenpairs`]. `None` means "chosen from the problem".
 #[derive(Debug, Clone, PartialEq)]
