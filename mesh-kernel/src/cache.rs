@@ -123,7 +123,7 @@ impl<'a> Geometry<'a> {
         }
     }
 
-    /// The face-wise gradient of piecewise-linear functions ([`operators::gradient`]).
+    /// The face-wise gradient of piecewise-linear functions ([`operators::gradient()`]).
     pub fn gradient(&self) -> &'a CsMat<f64> {
         self.cache.gradient.get_or_init(|| operators::gradient(self.mesh))
     }

@@ -16,6 +16,7 @@
 //! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
 //! | [`par`] | parallel maps over index ranges: one threshold and task size for every crate (feature `rayon`) | |
+//! | [`random`] | `SplitMix64`, the one seeded generator (jitter, start blocks, tests) | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
@@ -62,6 +63,7 @@ pub mod ids;
 pub mod mesh;
 pub mod operators;
 pub mod par;
+pub mod random;
 pub mod shapes;
 #[cfg(feature = "solver")]
 pub mod solver;

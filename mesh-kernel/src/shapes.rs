@@ -12,6 +12,7 @@ use glam::{DVec2, DVec3};
 
 use crate::error::{MeshError, Result};
 use crate::mesh::TriMesh;
+use crate::random::SplitMix64;
 
 /// Largest vertex count a procedural shape may have (about 1.3e8).
 const MAX_VERTICES: u128 = 1 << 27;
@@ -221,12 +222,12 @@ pub fn irregular_torus(major: f64, minor: f64, nu: usize, nv: usize, jitter: f64
         return Err(MeshError::InvalidOption { name: "jitter", reason: format!("{jitter} is not in [0, 0.5)") });
     }
     let regular = torus(major, minor, nu, nv)?;
-    let mut rng = SplitMix64(seed);
+    let mut rng = SplitMix64::new(seed);
     let (du, dv) = (TAU / nu as f64, TAU / nv as f64);
     let positions = (0..nu * nv)
         .map(|k| {
-            let u = (k / nv) as f64 * du + jitter * du * rng.next_signed();
-            let v = (k % nv) as f64 * dv + jitter * dv * rng.next_signed();
+            let u = (k / nv) as f64 * du + jitter * du * rng.signed();
+            let v = (k % nv) as f64 * dv + jitter * dv * rng.signed();
             let rho = major + minor * v.cos();
             DVec3::new(rho * u.cos(), rho * u.sin(), minor * v.sin())
         })
@@ -333,7 +334,7 @@ pub fn disk(rings: usize, seed: u64) -> Result<TriMesh> {
     check_min("rings", rings, 1)?;
     check_count("rings^2", (3 * rings as u128).saturating_mul(rings as u128 + 1))?;
     let h = 1.0 / rings as f64;
-    let mut rng = SplitMix64(seed);
+    let mut rng = SplitMix64::new(seed);
     let mut positions = vec![DVec3::ZERO];
     let mut ring_start = vec![0usize, 1];
     for k in 1..=rings {
@@ -342,7 +343,7 @@ pub fn disk(rings: usize, seed: u64) -> Result<TriMesh> {
             let a = TAU * i as f64 / count as f64;
             let mut p = DVec2::new(a.cos(), a.sin()) * (k as f64 * h);
             if k < rings {
-                p += DVec2::new(rng.next_signed(), rng.next_signed()) * (0.3 * h);
+                p += DVec2::new(rng.signed(), rng.signed()) * (0.3 * h);
             }
             positions.push(p.extend(0.0));
         }
@@ -415,24 +416,6 @@ pub fn cube(n: usize) -> Result<TriMesh> {
     }
     let (positions, faces, _) = crate::clean::weld_vertices(&positions, &faces, 0.0)?;
     TriMesh::new(positions, faces)
-}
-
-/// A tiny deterministic generator (SplitMix64) for reproducible jitter.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [-1, 1).
-    fn next_signed(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
 }
 
 /// The names accepted by [`by_name`], for command-line help.

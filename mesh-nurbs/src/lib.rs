@@ -17,7 +17,7 @@
 //!   are documented there: a sphere with outward normals has `H = +1/r`).
 //! - [`shapes`]: exact circles, arcs, spheres, tori, cylinders, cones, surfaces
 //!   of revolution and bilinear patches.
-//! - [`tessellate`]: uniform and adaptive (chordal tolerance) tessellation into a
+//! - [`tessellate`](mod@tessellate): uniform and adaptive (chordal tolerance) tessellation into a
 //!   [`Tessellation`]: the mesh plus per-vertex `(u, v)`, normal, `K`, `H`,
 //!   `k1`, `k2` and principal directions. Seams are welded, poles are fans.
 //! - [`json`]: a small JSON format for surfaces.

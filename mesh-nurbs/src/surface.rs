@@ -217,7 +217,7 @@ impl NurbsSurface {
 
     /// Unit normal `n = s_u x s_v / |s_u x s_v|` (section 2.5). At a degenerate
     /// point it is the limit from inside the domain along the iso-line through
-    /// the point (see [`Self::limit_normal`]); zero if there is none.
+    /// the point (the limit normal); zero if there is none.
     /// Cost O(p^2 + q^2 + p q).
     ///
     /// # Errors

@@ -9,8 +9,8 @@
 //! | [`eigen`] | [`eigenpairs`]: the k smallest pairs of `L x = lambda M x` by block Krylov-Schur shift-invert (dense for small pieces), one exact zero per component, M-orthonormal, every residual within the tolerance or [`SpectralError::NotConverged`] | Stewart 2001; chapter sec. 2.7 |
 //! | [`operators`] | the pair `(L, M)` of a mesh: cotangent or intrinsic Delaunay Laplacian, mixed Voronoi or barycentric lumped mass | eq. 2.15; Meyer et al. 2003 |
 //! | [`harmonics`] | [`ManifoldHarmonics`]: basis, forward `Phi^T M f` and inverse transforms of fields and geometry | Vallet and Levy 2008 |
-//! | [`filter`] | [`filter()`]: transfer functions over frequencies (low-pass, band exaggeration) | Vallet and Levy 2008 |
-//! | [`compress`] | [`compress()`], [`compression_curve`]: keep k coefficients, error vs k | Karni and Gotsman 2000 |
+//! | [`filter`](mod@filter) | [`filter()`]: transfer functions over frequencies (low-pass, band exaggeration) | Vallet and Levy 2008 |
+//! | [`compress`](mod@compress) | [`compress()`], [`compression_curve`]: keep k coefficients, error vs k | Karni and Gotsman 2000 |
 //! | [`hks`] | [`heat_kernel_signature`] | Sun, Ovsjanikov and Guibas 2009 |
 //!
 //! ```

@@ -23,6 +23,7 @@
 
 pub mod data;
 mod raw;
+#[path = "../../mesh-kernel/src/random.rs"]
 mod rng;
 
 pub use data::{shared_data, shared_file};

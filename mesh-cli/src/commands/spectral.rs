@@ -312,7 +312,7 @@ pub struct HksSummary {
     pub input: String,
     /// The written file.
     pub output: String,
-    /// The times, one property hks<i> each.
+    /// The times, one property `hks<i>` each.
     pub times: Vec<f64>,
     /// Per time, the smallest and largest value over vertices.
     pub ranges: Vec<[Option<f64>; 2]>,

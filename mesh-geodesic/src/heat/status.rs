@@ -66,7 +66,7 @@ pub enum HeatStatus {
     Unreached,
 }
 
-/// The result of [`HeatGeodesics::solve`]: one distance and one status per
+/// The result of [`HeatGeodesics::solve`](crate::HeatGeodesics::solve): one distance and one status per
 /// vertex.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]

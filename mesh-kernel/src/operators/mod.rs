@@ -3,7 +3,7 @@
 //! - [`adjacency_matrix`] (eq. 2.5) and [`uniform_laplacian`] (eq. 2.12);
 //! - [`cotan_laplacian`] (eq. 2.15) and the weights behind it;
 //! - [`mass`]: barycentric, mixed Voronoi (Meyer et al. 2003) and Galerkin;
-//! - [`gradient`] and [`divergence`] of piecewise-linear functions (`L = D G`);
+//! - [`gradient()`] and [`divergence()`] of piecewise-linear functions (`L = D G`);
 //! - [`intrinsic`]: intrinsic Delaunay triangulation by edge flips and its
 //!   Laplacian, whose weights are never negative.
 //!

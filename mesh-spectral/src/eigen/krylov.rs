@@ -31,9 +31,9 @@ use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
 
-use super::random::SplitMix64;
 use super::tall;
 use crate::error::{Result, SpectralError};
+use mesh_kernel::random::SplitMix64;
 
 /// A symmetric operator applied to blocks of vectors.
 pub(crate) trait BlockOperator {
@@ -229,7 +229,7 @@ impl KrylovSchur {
         let (n, b) = (self.v.nrows(), self.b);
         let mut q = Mat::zeros(n, b);
         for j in 0..b {
-            rng.fill(q.col_as_slice_mut(j));
+            rng.fill_signed(q.col_as_slice_mut(j));
         }
         let norms: Vec<f64> = column_norms(&q);
         let empty = self.v.as_ref().subcols(0, 0);
@@ -429,7 +429,7 @@ fn gram_schmidt(prev: MatRef<'_, f64>, q: &mut Mat<f64>, norms: &[f64], rng: &mu
         if norm > 1e-13 * norms[i] && norm > 0.0 {
             r[(i, i)] = norm;
         } else {
-            rng.fill(&mut col);
+            rng.fill_signed(&mut col);
             for _ in 0..2 {
                 against_basis(prev, &mut col);
                 against_previous(q, i, &mut col, None);

@@ -40,7 +40,6 @@ mod krylov;
 mod merge;
 mod problem;
 mod quality;
-mod random;
 mod shift_invert;
 pub(crate) mod tall;
 

@@ -144,8 +144,8 @@ fn watchdog(current: Arc<Mutex<Current>>) {
 fn input(format: Format, all: &[seeds::Seed], seed: u64, iteration: u64) -> (Vec<u8>, String) {
     let index = Format::ALL.iter().position(|f| *f == format).unwrap_or(0) as u64;
     let mut rng = rng::for_input(index, seed, iteration);
-    let base = rng.pick(all);
-    let other = rng.pick(all);
+    let base = rng::pick(&mut rng, all);
+    let other = rng::pick(&mut rng, all);
     let (bytes, applied) = mutate::mutate(&mut rng, &base.bytes, &other.bytes);
     (bytes, format!("seed file `{}`, mutations: {}", base.name, applied.join(", ")))
 }

@@ -9,6 +9,8 @@
 
 use mesh_testkit::SplitMix64;
 
+use super::rng::pick;
+
 /// Largest mutated input, in bytes (long-line mutations are capped to it).
 pub const MAX_SIZE: usize = 4 << 20;
 
@@ -108,7 +110,7 @@ fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u
         1 => {
             let at = rng.below(len + 1);
             let bytes: Vec<u8> = (0..1 + rng.below(16))
-                .map(|_| if rng.one_in(2) { *rng.pick(b"\0\xff\n\r \t-+.e9/#") } else { rng.next_u64() as u8 })
+                .map(|_| if rng.one_in(2) { *pick(rng, b"\0\xff\n\r \t-+.e9/#") } else { rng.next_u64() as u8 })
                 .collect();
             data.splice(at..at, bytes);
         }
@@ -130,7 +132,7 @@ fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u
                 _ => spans,
             };
             if !chosen.is_empty() {
-                let (start, end) = *rng.pick(&chosen);
+                let (start, end) = *pick(rng, &chosen);
                 let replacement = number_replacement(rng, &data[start..end]);
                 data.splice(start..end, replacement.into_bytes());
             }
@@ -140,7 +142,7 @@ fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u
             let at = line_start(rng, data);
             let n = [100, 4096, 70_000, 1 << 20][rng.below(4)];
             const UNITS: [&[u8]; 7] = [b"1 ", b"9", b" ", b"1/1/1 ", b"-", b"\t", b"0.5e-3 "];
-            let unit = *rng.pick(&UNITS);
+            let unit = *pick(rng, &UNITS);
             let mut line: Vec<u8> = unit.iter().copied().cycle().take(n).collect();
             line.push(b'\n');
             data.splice(at..at, line);
@@ -148,7 +150,7 @@ fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u
         10 => {
             const BAD: [&[u8]; 6] =
                 [b"\xff", b"\xc3", b"\xed\xa0\x80", b"\xf8\x88\x80\x80\x80", b"\xe2\x82", b"\xc0\xaf"];
-            let bad = *rng.pick(&BAD);
+            let bad = *pick(rng, &BAD);
             let at = rng.below(len + 1);
             if rng.one_in(2) && at < len {
                 data.splice(at..at + 1, bad.iter().copied());
@@ -161,15 +163,15 @@ fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u
         15 => {
             let spans = number_spans(data);
             if !spans.is_empty() {
-                let (start, end) = *rng.pick(&spans);
-                data.splice(start..end, rng.pick(FLOATS).bytes());
+                let (start, end) = *pick(rng, &spans);
+                data.splice(start..end, pick(rng, FLOATS).bytes());
             }
         }
         16 => {
             let spans = string_spans(data);
             if !spans.is_empty() {
-                let (start, end) = *rng.pick(&spans);
-                data.splice(start..end, rng.pick(STRINGS).bytes());
+                let (start, end) = *pick(rng, &spans);
+                data.splice(start..end, pick(rng, STRINGS).bytes());
             }
         }
         _ => {
@@ -189,12 +191,12 @@ fn mutate_once(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>, other: &[u
 fn number_replacement(rng: &mut SplitMix64, old: &[u8]) -> String {
     let text = String::from_utf8_lossy(old);
     match rng.below(4) {
-        0 | 1 => (*rng.pick(INTEGERS)).to_owned(),
+        0 | 1 => (*pick(rng, INTEGERS)).to_owned(),
         2 => match text.parse::<i64>() {
             Ok(v) => v.saturating_add(if rng.one_in(2) { 1 } else { -1 }).to_string(),
-            Err(_) => (*rng.pick(FLOATS)).to_owned(),
+            Err(_) => (*pick(rng, FLOATS)).to_owned(),
         },
-        _ => (*rng.pick(FLOATS)).to_owned(),
+        _ => (*pick(rng, FLOATS)).to_owned(),
     }
 }
 
@@ -212,20 +214,23 @@ fn binary_field(rng: &mut SplitMix64, data: &mut [u8], float: bool) {
     let len = data.len() as u32;
     let old = u32::from_le_bytes([data[at], data[at + 1], data[at + 2], data[at + 3]]);
     let value: u32 = if float {
-        *rng.pick(&[f32::NAN.to_bits(), f32::INFINITY.to_bits(), f32::NEG_INFINITY.to_bits(), f32::MAX.to_bits(), 1])
+        *pick(rng, &[f32::NAN.to_bits(), f32::INFINITY.to_bits(), f32::NEG_INFINITY.to_bits(), f32::MAX.to_bits(), 1])
     } else {
-        *rng.pick(&[
-            0,
-            1,
-            u32::MAX,
-            i32::MAX as u32,
-            1 << 31,
-            len,
-            len.wrapping_add(1),
-            old.wrapping_add(1),
-            old.wrapping_sub(1),
-            1 << 24,
-        ])
+        *pick(
+            rng,
+            &[
+                0,
+                1,
+                u32::MAX,
+                i32::MAX as u32,
+                1 << 31,
+                len,
+                len.wrapping_add(1),
+                old.wrapping_add(1),
+                old.wrapping_sub(1),
+                1 << 24,
+            ],
+        )
     };
     let bytes = if rng.one_in(2) { value.to_le_bytes() } else { value.to_be_bytes() };
     data[at..at + 4].copy_from_slice(&bytes);
@@ -274,7 +279,7 @@ fn line_starts(data: &[u8]) -> Vec<usize> {
 }
 
 fn line_start(rng: &mut SplitMix64, data: &[u8]) -> usize {
-    *rng.pick(&line_starts(data))
+    *pick(rng, &line_starts(data))
 }
 
 /// The line containing `start`, as a byte range with its newline.
@@ -286,12 +291,12 @@ fn line_at(data: &[u8], start: usize) -> (usize, usize) {
 /// Duplicates (up to 100 times), removes or swaps whole lines.
 fn lines(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>) {
     let starts = line_starts(data);
-    let (a, b) = line_at(data, *rng.pick(&starts));
+    let (a, b) = line_at(data, *pick(rng, &starts));
     match kind {
         11 => {
             let line = data[a..b].to_vec();
             let copies = if rng.one_in(4) { 1 + rng.below(100) } else { 1 };
-            let at = if rng.one_in(2) { b } else { *rng.pick(&starts) };
+            let at = if rng.one_in(2) { b } else { *pick(rng, &starts) };
             let repeated: Vec<u8> = line.iter().copied().cycle().take(line.len() * copies).collect();
             data.splice(at..at, repeated);
         }
@@ -299,7 +304,7 @@ fn lines(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>) {
             data.drain(a..b);
         }
         _ => {
-            let (c, d) = line_at(data, *rng.pick(&starts));
+            let (c, d) = line_at(data, *pick(rng, &starts));
             if d <= a || b <= c {
                 let ((a, b), (c, d)) = if b <= c { ((a, b), (c, d)) } else { ((c, d), (a, b)) };
                 let mut out = data[..a].to_vec();
@@ -316,7 +321,7 @@ fn lines(rng: &mut SplitMix64, kind: usize, data: &mut Vec<u8>) {
 /// Swaps two whitespace-separated tokens of one line.
 fn swap_tokens(rng: &mut SplitMix64, data: &mut Vec<u8>) {
     let starts = line_starts(data);
-    let (a, b) = line_at(data, *rng.pick(&starts));
+    let (a, b) = line_at(data, *pick(rng, &starts));
     let line = &data[a..b];
     let mut tokens: Vec<(usize, usize)> = Vec::new();
     let mut i = 0;

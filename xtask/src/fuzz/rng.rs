@@ -10,6 +10,11 @@ pub fn for_input(format: u64, seed: u64, iteration: u64) -> SplitMix64 {
     SplitMix64::new(s)
 }
 
+/// A random element of a non-empty slice (the fuzzer's tables are never empty).
+pub fn pick<'a, T>(rng: &mut SplitMix64, items: &'a [T]) -> &'a T {
+    &items[rng.below(items.len())]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

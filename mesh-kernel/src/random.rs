@@ -1,4 +1,8 @@
-//! A seeded generator for reproducible test inputs.
+//! A seeded generator: reproducible jitter in [`shapes`](crate::shapes),
+//! random start blocks of iterative eigensolvers, test inputs.
+//!
+//! (This file is also the test kit's generator, included by path, so that
+//! the two are one.)
 
 /// SplitMix64 (Steele, Lea and Flood 2014, "Fast splittable pseudorandom
 /// number generators"): a 64-bit state advanced by a Weyl constant and mixed
@@ -32,6 +36,13 @@ impl SplitMix64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 
+    /// Fills `out` with uniform values in `[-1, 1)`. O(out).
+    pub fn fill_signed(&mut self, out: &mut [f64]) {
+        for x in out {
+            *x = self.signed();
+        }
+    }
+
     /// Uniform in `0..n` by a modulo (bias below n / 2^64); 0 when `n` is 0. O(1).
     pub fn below(&mut self, n: usize) -> usize {
         if n == 0 {
@@ -46,12 +57,9 @@ impl SplitMix64 {
         self.below(n) == 0
     }
 
-    /// A random element of a non-empty slice. O(1).
-    ///
-    /// # Panics
-    /// When `items` is empty.
-    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
-        &items[self.below(items.len())]
+    /// A random element of a slice, `None` when it is empty. O(1).
+    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> Option<&'a T> {
+        items.get(self.below(items.len()))
     }
 
     /// A uniform random permutation of `0..n` (Fisher-Yates, Durstenfeld
@@ -91,7 +99,8 @@ mod tests {
         }
         assert_ne!(SplitMix64::new(1).next_u64(), SplitMix64::new(2).next_u64());
         assert_eq!(SplitMix64::new(3).below(0), 0);
-        assert_eq!(*SplitMix64::new(3).pick(&[5u8]), 5);
+        assert_eq!(SplitMix64::new(3).pick(&[5u8]), Some(&5));
+        assert_eq!(SplitMix64::new(3).pick::<u8>(&[]), None);
     }
 
     #[test]
