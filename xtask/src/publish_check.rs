@@ -9,6 +9,12 @@
 //!    and builds each one from its archive, in dependency order, against
 //!    the registry and the archives before it. It needs a clean work tree
 //!    (no `--allow-dirty`), as continuous integration has.
+//!
+//! Each archive is built as a workspace of its own, where this workspace's
+//! `[profile.dev]` does not apply; the dry run is given the same settings
+//! (as `CARGO_PROFILE_DEV_*` variables read from the root `Cargo.toml`), so
+//! that it reuses the dependencies an earlier `cargo test` built: about 5
+//! minutes on 2 cores after the tests instead of 20+.
 
 use std::path::Path;
 use std::process::Command;
@@ -24,7 +30,7 @@ pub struct Args {
     names_only: bool,
     /// Package every crate without building it from its archive
     /// (`cargo publish --no-verify`): the manifests, metadata and file lists
-    /// are checked in about a minute instead of 20+ minutes on 2 cores.
+    /// are checked in about a minute instead of about 5 (after `cargo test`).
     #[arg(long)]
     no_verify: bool,
 }
@@ -57,6 +63,9 @@ pub fn run(args: &Args) -> Result<()> {
     if args.no_verify {
         publish.arg("--no-verify");
     }
+    for (key, value) in dev_profile(&std::fs::read_to_string(root.join("Cargo.toml"))?) {
+        publish.env(format!("CARGO_PROFILE_DEV_{}", key.to_uppercase().replace('-', "_")), value);
+    }
     let status = publish.status()?;
     if !status.success() {
         return Err(format!("cargo publish --workspace --dry-run failed ({status})").into());
@@ -67,6 +76,23 @@ pub fn run(args: &Args) -> Result<()> {
         println!("publish-check: every publishable crate packages and builds from its archive");
     }
     Ok(())
+}
+
+/// The `key = value` settings of the `[profile.dev]` table of a manifest,
+/// values without their quotes (the scalars a profile holds). O(text).
+fn dev_profile(manifest: &str) -> Vec<(String, String)> {
+    let mut inside = false;
+    let mut out = Vec::new();
+    for line in manifest.lines().map(str::trim) {
+        if line.starts_with('[') {
+            inside = line == "[profile.dev]";
+        } else if let (true, Some((key, value))) = (inside, line.split_once('=')) {
+            if !key.trim().starts_with('#') {
+                out.push((key.trim().to_owned(), value.trim().trim_matches('"').to_owned()));
+            }
+        }
+    }
+    out
 }
 
 fn cargo(dir: &Path) -> Command {
