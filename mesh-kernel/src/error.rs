@@ -81,7 +81,9 @@ pub enum MeshError {
 
 /// Where a mesh fails to be an oriented 2-manifold. Each list is complete and
 /// sorted; [`NonManifoldReport::is_empty`] means the mesh is manifold.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
+/// `Debug` and `Display` show the first few entries of each list and its
+/// length (a scan can have thousands); the fields hold them all.
+#[derive(Clone, Default, PartialEq, Eq)]
 pub struct NonManifoldReport {
     /// Edges shared by more than two faces.
     pub edges: Vec<EdgeId>,
@@ -100,28 +102,46 @@ impl NonManifoldReport {
     }
 }
 
+/// The first entries of `items` and, when some are left out, their count. O(1).
+fn abridged<T: std::fmt::Debug>(items: &[T]) -> String {
+    const SHOWN: usize = 8;
+    let mut s: Vec<String> = items.iter().take(SHOWN).map(|i| format!("{i:?}")).collect();
+    if items.len() > SHOWN {
+        s.push(format!("... ({} in all)", items.len()));
+    }
+    s.join(", ")
+}
+
+impl std::fmt::Debug for NonManifoldReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "NonManifoldReport {{ edges: [{}], vertices: [{}], inconsistent_edges: [{}] }}",
+            abridged(&self.edges),
+            abridged(&self.vertices),
+            abridged(&self.inconsistent_edges)
+        )
+    }
+}
+
 impl std::fmt::Display for NonManifoldReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        fn list<T: std::fmt::Debug>(items: &[T]) -> String {
-            const SHOWN: usize = 8;
-            let mut s: Vec<String> = items.iter().take(SHOWN).map(|i| format!("{i:?}")).collect();
-            if items.len() > SHOWN {
-                s.push(format!("... ({} in all)", items.len()));
-            }
-            s.join(", ")
-        }
         let mut parts = Vec::new();
         if !self.edges.is_empty() {
-            parts.push(format!("{} edges with more than two faces [{}]", self.edges.len(), list(&self.edges)));
+            parts.push(format!("{} edges with more than two faces [{}]", self.edges.len(), abridged(&self.edges)));
         }
         if !self.vertices.is_empty() {
-            parts.push(format!("{} vertices with more than one fan [{}]", self.vertices.len(), list(&self.vertices)));
+            parts.push(format!(
+                "{} vertices with more than one fan [{}]",
+                self.vertices.len(),
+                abridged(&self.vertices)
+            ));
         }
         if !self.inconsistent_edges.is_empty() {
             parts.push(format!(
                 "{} edges between inconsistently oriented faces [{}]",
                 self.inconsistent_edges.len(),
-                list(&self.inconsistent_edges)
+                abridged(&self.inconsistent_edges)
             ));
         }
         if parts.is_empty() {
@@ -134,3 +154,20 @@ impl std::fmt::Display for NonManifoldReport {
 
 /// Shorthand for results in this crate.
 pub type Result<T, E = MeshError> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod report_tests {
+    use super::*;
+
+    #[test]
+    fn long_reports_are_abridged_in_debug_and_display() {
+        let report = NonManifoldReport { edges: (0..1000).map(EdgeId::new).collect(), ..Default::default() };
+        for text in [format!("{report:?}"), report.to_string()] {
+            assert!(text.contains("e0, e1") && text.contains("(1000 in all)") && text.len() < 200, "{text}");
+        }
+        assert_eq!(
+            format!("{:?}", NonManifoldReport::default()),
+            "NonManifoldReport { edges: [], vertices: [], inconsistent_edges: [] }"
+        );
+    }
+}

@@ -106,15 +106,19 @@ fn folds_back(a: DVec2, b: DVec2, c: DVec2) -> bool {
 /// about one segment long (at least 1/32 of the longest segment, so that no
 /// segment covers more than about a thousand cells).
 fn cell_keys(segments: &[Segment]) -> Vec<(u64, u32)> {
-    let first = segments[0].a;
-    let (lo, hi) = segments.iter().fold((first, first), |(lo, hi), s| (lo.min(s.a).min(s.b), hi.max(s.a).max(s.b)));
+    let finite = segments.iter().flat_map(|s| [s.a, s.b]).filter(|p| p.is_finite());
+    let (lo, hi) = finite.fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    // Lengths are measured in units of the extent, so that no square
+    // underflows or overflows whatever the unit of the coordinates.
     let extent = (hi - lo).max_element();
-    let lengths = segments.iter().map(|s| s.a.distance(s.b));
+    let unit = if extent > 0.0 && extent.is_finite() { 1.0 / extent } else { 1.0 };
+    let local = |p: DVec2| (p - lo) * unit;
+    let lengths = segments.iter().map(|s| local(s.a).distance(local(s.b))).filter(|l| l.is_finite());
     let (sum, longest) = lengths.fold((0.0, 0.0f64), |(s, m), l| (s + l, m.max(l)));
     let mean = sum / segments.len() as f64;
-    let cell = mean.max(longest / 32.0).max(extent / f64::from(1u32 << 20));
-    let index = |x: f64, lo: f64| -> u64 {
-        let i = if cell > 0.0 && cell.is_finite() { ((x - lo) / cell).floor() } else { 0.0 };
+    let cell = mean.max(longest / 32.0).max(1.0 / f64::from(1u32 << 20));
+    let index = |x: f64| -> u64 {
+        let i = (x / cell).floor();
         if i.is_finite() && i > 0.0 {
             (i as u64).min(1 << 21)
         } else {
@@ -123,9 +127,16 @@ fn cell_keys(segments: &[Segment]) -> Vec<(u64, u32)> {
     };
     let mut keyed = Vec::with_capacity(2 * segments.len());
     for (k, s) in segments.iter().enumerate() {
-        let (a, b) = (s.a.min(s.b), s.a.max(s.b));
-        for x in index(a.x, lo.x)..=index(b.x, lo.x) {
-            for y in index(a.y, lo.y)..=index(b.y, lo.y) {
+        let (a, b) = (local(s.a), local(s.b));
+        if !(a.is_finite() && b.is_finite()) {
+            // No cell range for a point that is not one; such a segment
+            // meets nothing.
+            keyed.push((0, k as u32));
+            continue;
+        }
+        let (a, b) = (a.min(b), a.max(b));
+        for x in index(a.x)..=index(b.x) {
+            for y in index(a.y)..=index(b.y) {
                 keyed.push(((x << 32) | y, k as u32));
             }
         }
@@ -161,6 +172,27 @@ mod tests {
         for n in [3, 4, 10, 1000, 100_000] {
             assert!(boundary_is_simple(&[circle(n)]), "{n}");
         }
+    }
+
+    #[test]
+    fn the_unit_of_length_does_not_matter_and_non_finite_points_stay_bounded() {
+        // At 1e-300 every squared length underflows; the grid must still be
+        // about one segment per cell (before, this asked for gigabytes).
+        let eight = [DVec2::ZERO, DVec2::new(1.0, 1.0), DVec2::new(1.0, 0.0), DVec2::new(0.0, 1.0)];
+        for scale in [1e-300, 1e-150, 1.0, 1e150, 1e300] {
+            let c: Vec<DVec2> = circle(1000).into_iter().map(|p| p * scale).collect();
+            assert!(cell_keys(&segments_of(&c)).len() < 40 * c.len(), "{scale}");
+            assert!(boundary_is_simple(&[c]), "{scale}");
+            assert!(!boundary_is_simple(&[eight.iter().map(|p| *p * scale).collect()]), "{scale}");
+        }
+        let mut c = circle(1000);
+        c[10] = DVec2::new(f64::NAN, 0.5);
+        c[500] = DVec2::new(f64::INFINITY, 0.0);
+        assert!(cell_keys(&segments_of(&c)).len() < 40 * c.len());
+    }
+
+    fn segments_of(p: &[DVec2]) -> Vec<Segment> {
+        (0..p.len()).map(|k| Segment { a: p[k], b: p[(k + 1) % p.len()], lp: 0, k, len: p.len() }).collect()
     }
 
     #[test]

@@ -198,9 +198,20 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &ParamOptions) -> Result<(Vec<DV
         }
         ParamMethod::Arap { iterations } => {
             in_mesh_units = true;
-            let start = fixed_boundary(mesh, &Harmonic, &boundary, options)?;
+            let (mut start, degenerate) = fixed_boundary(mesh, &Harmonic, &boundary, options)?;
+            // The start has the surface's size (same boundary length), so
+            // that the iterates, and the result, scale with the surface
+            // whatever its unit of length.
+            let length = |p: &dyn Fn(usize) -> f64| (0..boundary.len()).map(p).sum::<f64>();
+            let on_surface =
+                length(&|k| mesh.position(boundary[k]).distance(mesh.position(boundary[(k + 1) % boundary.len()])));
+            let in_start =
+                length(&|k| start[boundary[k].idx()].distance(start[boundary[(k + 1) % boundary.len()].idx()]));
+            if on_surface > 0.0 && in_start > 0.0 && (on_surface / in_start).is_finite() {
+                start.iter_mut().for_each(|q| *q *= on_surface / in_start);
+            }
             let arap = Arap::new(mesh, &ArapOptions { degenerate: options.degenerate, iterations })?;
-            (arap.solve(&start.0)?, start.1)
+            (arap.solve(&start)?, degenerate)
         }
         method => {
             let weights = method.weights().ok_or(ParamError::InvalidOption {

@@ -217,7 +217,8 @@ fn counts(mesh: &TriMesh, r: &mesh_kernel::clean::CleanReport) -> Vec<f64> {
 /// the mesh's unit, and the size takes it out).
 fn uv(m: &TriMesh, method: ParamMethod) -> Result<Vec<f64>, String> {
     let p = parameterize(m, &ParamOptions { method, ..Default::default() }).map_err(|e| e.to_string())?;
-    let size = p.uv.iter().fold(0.0_f64, |s, q| s.max(q.length()));
+    // The largest coordinate (a length would over- or underflow at 1e+-300).
+    let size = p.uv.iter().fold(0.0_f64, |s, q| s.max(q.abs().max_element()));
     Ok(p.uv.iter().flat_map(|q: &DVec2| [q.x / size, q.y / size]).collect())
 }
 
