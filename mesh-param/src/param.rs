@@ -199,17 +199,7 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &ParamOptions) -> Result<(Vec<DV
         ParamMethod::Arap { iterations } => {
             in_mesh_units = true;
             let (mut start, degenerate) = fixed_boundary(mesh, &Harmonic, &boundary, options)?;
-            // The start has the surface's size (same boundary length), so
-            // that the iterates, and the result, scale with the surface
-            // whatever its unit of length.
-            let length = |p: &dyn Fn(usize) -> f64| (0..boundary.len()).map(p).sum::<f64>();
-            let on_surface =
-                length(&|k| mesh.position(boundary[k]).distance(mesh.position(boundary[(k + 1) % boundary.len()])));
-            let in_start =
-                length(&|k| start[boundary[k].idx()].distance(start[boundary[(k + 1) % boundary.len()].idx()]));
-            if on_surface > 0.0 && in_start > 0.0 && (on_surface / in_start).is_finite() {
-                start.iter_mut().for_each(|q| *q *= on_surface / in_start);
-            }
+            scale_to_surface(mesh, &boundary, &mut start);
             let arap = Arap::new(mesh, &ArapOptions { degenerate: options.degenerate, iterations })?;
             (arap.solve(&start)?, degenerate)
         }
@@ -227,6 +217,19 @@ pub(crate) fn map_disk(mesh: &TriMesh, options: &ParamOptions) -> Result<(Vec<DV
         uv.iter_mut().for_each(|q| *q *= unit);
     }
     Ok((uv, degenerate_faces))
+}
+
+/// Scales `uv` so that the boundary loop is as long in it as on the surface:
+/// an ARAP start of the surface's size makes the iterates, and the result,
+/// scale with the surface whatever its unit of length. O(boundary + V).
+fn scale_to_surface(mesh: &TriMesh, boundary: &[VertexId], uv: &mut [DVec2]) {
+    let edges = || (0..boundary.len()).map(|k| (boundary[k], boundary[(k + 1) % boundary.len()]));
+    let on_surface: f64 = edges().map(|(a, b)| mesh.position(a).distance(mesh.position(b))).sum();
+    let in_uv: f64 = edges().map(|(a, b)| uv[a.idx()].distance(uv[b.idx()])).sum();
+    let ratio = on_surface / in_uv;
+    if ratio > 0.0 && ratio.is_finite() {
+        uv.iter_mut().for_each(|q| *q *= ratio);
+    }
 }
 
 /// The fixed-boundary solve: constraints from the boundary map, one solver.
