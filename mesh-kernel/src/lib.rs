@@ -17,6 +17,7 @@
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
 //! | [`par`] | parallel maps over index ranges: one threshold and task size for every crate (feature `rayon`) | |
 //! | [`random`] | `SplitMix64`, the one seeded generator (jitter, start blocks, tests) | |
+//! | [`reorder`] | cache-friendly vertex and face orders (a Hilbert curve through the bounding box), with the maps back | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
@@ -64,6 +65,7 @@ pub mod mesh;
 pub mod operators;
 pub mod par;
 pub mod random;
+pub mod reorder;
 pub mod shapes;
 #[cfg(feature = "solver")]
 pub mod solver;
@@ -76,6 +78,7 @@ pub use connectivity::{BoundaryLoop, Components, Connectivity, VertexKind};
 pub use error::{MeshError, NonManifoldReport, Result};
 pub use ids::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::TriMesh;
+pub use reorder::Reordering;
 pub use submesh::SubMesh;
 
 #[cfg(feature = "solver")]

@@ -5,7 +5,7 @@ use std::path::Path;
 use mesh_io::MeshData;
 use mesh_kernel::geometry::{self, NormalWeighting};
 use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
-use mesh_kernel::TriMesh;
+use mesh_kernel::{Reordering, TriMesh};
 
 use super::Operation;
 
@@ -15,10 +15,43 @@ fn fresh(mesh: &TriMesh) -> TriMesh {
     TriMesh::new(mesh.positions().to_vec(), mesh.faces().to_vec()).expect("copy of a valid mesh")
 }
 
+/// Elements of each of the two arrays of [`stream_copy`]: 2 x 256 MB, far
+/// beyond any cache.
+const STREAM_LEN: usize = 1 << 25;
+
+/// The machine's memory bandwidth as STREAM's "copy" measures it (McCalpin
+/// 1995): one array copied into another, 16 bytes moved per element,
+/// split between the threads of the pool.
+fn stream_copy() -> Operation<'static> {
+    use rayon::prelude::*;
+    let src: Vec<f64> = (0..STREAM_LEN).map(|i| i as f64).collect();
+    let mut dst = vec![1.0; STREAM_LEN];
+    Operation::new("stream_copy", move || {
+        let chunk = STREAM_LEN.div_ceil(rayon::current_num_threads());
+        dst.par_chunks_mut(chunk).zip(src.par_chunks(chunk)).for_each(|(d, s)| d.copy_from_slice(s));
+        Ok(dst[STREAM_LEN / 2])
+    })
+    .moving(16 * STREAM_LEN)
+}
+
+/// The least traffic of a per-face operation writing `per_vertex` bytes per
+/// vertex: faces (12 bytes) and positions (24 bytes) read once.
+pub fn face_pass_bytes(mesh: &TriMesh, per_vertex: usize) -> usize {
+    12 * mesh.face_count() + (24 + per_vertex) * mesh.vertex_count()
+}
+
 /// The core operations, named as in peer_bench.py where they match.
 pub fn operations<'a>(path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> {
     let mesh = &data.mesh;
+    let (n, e) = (mesh.vertex_count(), mesh.connectivity().edge_count());
+    // A CSR matrix with a diagonal and two entries per edge: 8-byte row
+    // pointers, column indices and values.
+    let csr = 8 * (n + 1) + 16 * (n + 2 * e);
+    // Half-edge structure from scratch: faces read; per half-edge its twin
+    // (4 bytes) and edge (4 bytes), per vertex one outgoing half-edge (4 bytes).
+    let halfedges = 12 * mesh.face_count() + 24 * mesh.face_count() + 4 * n;
     vec![
+        stream_copy(),
         Operation::new("read", move || Ok(mesh_io::read(path)?)),
         Operation::new("connectivity", move || {
             let m = fresh(mesh);
@@ -29,10 +62,14 @@ pub fn operations<'a>(path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> 
             let m = fresh(mesh);
             let n = m.connectivity().boundary_loops()?.len();
             Ok((m, n))
-        }),
-        Operation::new("normals_area", move || Ok(geometry::vertex_normals(mesh, NormalWeighting::Area))),
-        Operation::new("cotan_laplacian", move || Ok(operators::cotan_laplacian(mesh))),
+        })
+        .moving(halfedges),
+        Operation::new("normals_area", move || Ok(geometry::vertex_normals(mesh, NormalWeighting::Area)))
+            .moving(face_pass_bytes(mesh, 24)),
+        Operation::new("cotan_laplacian", move || Ok(operators::cotan_laplacian(mesh)))
+            .moving(face_pass_bytes(mesh, 0) + csr),
         Operation::new("mass_voronoi", move || Ok(operators::mass_matrix(mesh, MassKind::MixedVoronoi))),
+        Operation::new("reorder_spatial", move || Ok(Reordering::spatial(mesh).apply(mesh)?)),
         Operation::new("intrinsic_delaunay", move || {
             Ok(IntrinsicTriangulation::delaunay(mesh, &IntrinsicOptions::default())?.cotan_laplacian())
         }),

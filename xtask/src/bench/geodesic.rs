@@ -4,6 +4,7 @@
 //! `exact_geodesic_pygeodesic`).
 
 use std::path::Path;
+use std::sync::OnceLock;
 
 use mesh_geodesic::{
     dijkstra, exact_distance, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, HeatGeodesics, HeatOptions,
@@ -18,19 +19,23 @@ pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>>
     let mesh = &data.mesh;
     let _ = mesh.connectivity();
     let source = [VertexId(0)];
-    let heat = HeatGeodesics::new(mesh, &HeatOptions::default());
-    let fmm = FastMarching::new(mesh, &FmmOptions::default());
+    // Prepared on first use (the untimed warm-up run of `time`).
+    let (heat, fmm) = (OnceLock::new(), OnceLock::new());
     vec![
         Operation::new("dijkstra", move || Ok(dijkstra(mesh, &source, &DijkstraOptions::default())?)),
         Operation::new("fmm", move || Ok(FastMarching::new(mesh, &FmmOptions::default())?.distance(&source)?)),
-        Operation::new("fmm_march", move || match &fmm {
-            Ok(f) => Ok(f.distance(&source)?),
-            Err(e) => Err(e.clone().into()),
+        Operation::new("fmm_march", move || {
+            match fmm.get_or_init(|| FastMarching::new(mesh, &FmmOptions::default())) {
+                Ok(f) => Ok(f.distance(&source)?),
+                Err(e) => Err(e.clone().into()),
+            }
         }),
         Operation::new("heat_precompute", move || Ok(HeatGeodesics::new(mesh, &HeatOptions::default())?)),
-        Operation::new("heat_solve", move || match &heat {
-            Ok(h) => Ok(h.distance(&source)?),
-            Err(e) => Err(e.clone().into()),
+        Operation::new("heat_solve", move || {
+            match heat.get_or_init(|| HeatGeodesics::new(mesh, &HeatOptions::default())) {
+                Ok(h) => Ok(h.distance(&source)?),
+                Err(e) => Err(e.clone().into()),
+            }
         }),
         Operation::new("exact_geodesic", move || Ok(exact_distance(mesh, &source, &ExactOptions::default())?)),
     ]

@@ -6,7 +6,7 @@
 //! and `wavelet_synthesis_2` (the in-place lifting steps).
 
 use std::path::Path;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use mesh_io::MeshData;
 use mesh_kernel::glam::DVec3;
@@ -14,6 +14,38 @@ use mesh_kernel::TriMesh;
 use mesh_wavelet::{detect, subdivide, FilterBank, Scheme, SubdivideOptions, WaveletKind};
 
 use super::Operation;
+
+/// The semi-regular input of the filter-bank operations and what they
+/// start from, built on first use (the untimed warm-up run).
+struct Setup {
+    fine: TriMesh,
+    hierarchy: mesh_wavelet::Hierarchy,
+    bank: FilterBank,
+    /// The fine positions in the hierarchy's order.
+    data: Vec<DVec3>,
+    /// `data` analyzed.
+    coefficients: Vec<DVec3>,
+}
+
+/// [`Setup`] shared by the operations, made once.
+type Prepared = Arc<OnceLock<Result<Setup, String>>>;
+
+fn prepared<'b>(cell: &'b Prepared, mesh: &TriMesh) -> crate::Result<&'b Setup> {
+    let made = cell.get_or_init(|| {
+        let run = || -> Result<Setup, mesh_wavelet::WaveletError> {
+            let fine = subdivide(mesh, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 2 })?;
+            let hierarchy = detect(&fine, &Default::default())?;
+            let bank = FilterBank::new(&hierarchy, Scheme::Midpoint, WaveletKind::Lifted)?;
+            let data: Vec<DVec3> =
+                (0..fine.vertex_count()).map(|v| fine.positions()[hierarchy.input_index(v).unwrap_or(v)]).collect();
+            let mut coefficients = data.clone();
+            bank.analyze(&mut coefficients)?;
+            Ok(Setup { fine, hierarchy, bank, data, coefficients })
+        };
+        run().map_err(|e| e.to_string())
+    });
+    made.as_ref().map_err(|e| e.clone().into())
+}
 
 /// A copy of the mesh without its cached connectivity.
 fn fresh(mesh: &TriMesh) -> TriMesh {
@@ -35,49 +67,25 @@ pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>>
             Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 })?)
         }),
     ];
-    // The semi-regular input of the filter-bank operations, built once.
-    let prepared = subdivide(mesh, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 2 }).and_then(|fine| {
-        let h = Arc::new(detect(&fine, &Default::default())?);
-        let bank = Arc::new(FilterBank::new(&h, Scheme::Midpoint, WaveletKind::Lifted)?);
-        Ok((Arc::new(fine), h, bank))
-    });
-    match prepared {
-        Ok((fine, h, bank)) => {
-            let data: Arc<Vec<DVec3>> =
-                Arc::new((0..fine.vertex_count()).map(|v| fine.positions()[h.input_index(v).unwrap_or(v)]).collect());
-            let mut coefficients = data.to_vec();
-            let analyzed = bank.analyze(&mut coefficients).map(|()| Arc::new(coefficients));
-            let (f, hb, b, d) = (fine.clone(), h.clone(), bank.clone(), data.clone());
-            ops.push(Operation::new("wavelet_detect_2", move || Ok(detect(&fresh(&f), &Default::default())?)));
-            ops.push(Operation::new("wavelet_bank_2", move || {
-                Ok(FilterBank::new(&hb, Scheme::Midpoint, WaveletKind::Lifted)?)
-            }));
-            ops.push(Operation::new("wavelet_analysis_2", move || {
-                let mut x = d.to_vec();
-                b.analyze(&mut x)?;
-                Ok(x)
-            }));
-            match analyzed {
-                Ok(w) => ops.push(Operation::new("wavelet_synthesis_2", move || {
-                    let mut x = w.to_vec();
-                    bank.synthesize(&mut x)?;
-                    Ok(x)
-                })),
-                Err(e) => {
-                    let msg = e.to_string();
-                    ops.push(Operation::new("wavelet_synthesis_2", move || -> crate::Result<()> {
-                        Err(msg.clone().into())
-                    }))
-                }
-            }
-        }
-        Err(e) => {
-            let msg = e.to_string();
-            for name in ["wavelet_detect_2", "wavelet_bank_2", "wavelet_analysis_2", "wavelet_synthesis_2"] {
-                let msg = msg.clone();
-                ops.push(Operation::new(name, move || -> crate::Result<()> { Err(msg.clone().into()) }));
-            }
-        }
-    }
+    let shared = Prepared::default();
+    let (f, hb, b, w) = (shared.clone(), shared.clone(), shared.clone(), shared);
+    ops.push(Operation::new("wavelet_detect_2", move || {
+        Ok(detect(&fresh(&prepared(&f, mesh)?.fine), &Default::default())?)
+    }));
+    ops.push(Operation::new("wavelet_bank_2", move || {
+        Ok(FilterBank::new(&prepared(&hb, mesh)?.hierarchy, Scheme::Midpoint, WaveletKind::Lifted)?)
+    }));
+    ops.push(Operation::new("wavelet_analysis_2", move || {
+        let p = prepared(&b, mesh)?;
+        let mut x = p.data.clone();
+        p.bank.analyze(&mut x)?;
+        Ok(x)
+    }));
+    ops.push(Operation::new("wavelet_synthesis_2", move || {
+        let p = prepared(&w, mesh)?;
+        let mut x = p.coefficients.clone();
+        p.bank.synthesize(&mut x)?;
+        Ok(x)
+    }));
     ops
 }
