@@ -76,72 +76,73 @@ impl Connectivity {
     pub fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
         let nh = faces.len() * 3;
         let corner_vertex: Vec<VertexId> = faces.iter().flat_map(|f| f.map(VertexId)).collect();
-        let dest = |h: usize| corner_vertex[HalfedgeId(h as u32).next().idx()];
+        // Each half-edge's endpoints as (smaller, larger), read face by face.
+        let ends: Vec<[u32; 2]> = faces
+            .iter()
+            .flat_map(|f| [0, 1, 2].map(|k| [f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3])]))
+            .collect();
 
-        // Counting sort of half-edges by their smaller endpoint.
+        // Counting sort of half-edges by their smaller endpoint; each entry
+        // packs (larger endpoint, half-edge) into one u64, so that sorting a
+        // bucket by it orders the bucket's edges with no further lookup.
         let mut bucket_offsets = vec![0u32; vertex_count + 1];
-        for h in 0..nh {
-            let lo = corner_vertex[h].0.min(dest(h).0);
+        for &[lo, _] in &ends {
             bucket_offsets[lo as usize + 1] += 1;
         }
         for v in 0..vertex_count {
             bucket_offsets[v + 1] += bucket_offsets[v];
         }
         let mut fill = bucket_offsets.clone();
-        let mut sorted = vec![HalfedgeId::INVALID; nh];
-        for h in 0..nh {
-            let lo = corner_vertex[h].0.min(dest(h).0) as usize;
-            sorted[fill[lo] as usize] = HalfedgeId(h as u32);
-            fill[lo] += 1;
+        let mut sorted = vec![0u64; nh];
+        for (h, &[lo, hi]) in ends.iter().enumerate() {
+            sorted[fill[lo as usize] as usize] = (u64::from(hi) << 32) | h as u64;
+            fill[lo as usize] += 1;
         }
         drop(fill);
-        let hi_of = |h: HalfedgeId| corner_vertex[h.idx()].0.max(dest(h.idx()).0);
-        for v in 0..vertex_count {
-            let bucket = &mut sorted[bucket_offsets[v] as usize..bucket_offsets[v + 1] as usize];
-            if bucket.len() > 1 {
-                bucket.sort_unstable_by_key(|&h| (hi_of(h), h.0));
-            }
-        }
-        drop(bucket_offsets);
+        drop(ends);
+        let (hi_of, h_of) = (|x: u64| (x >> 32) as u32, |x: u64| HalfedgeId(x as u32));
 
-        // Runs of equal (lo, hi) are edges.
+        // Runs of equal larger endpoint in a sorted bucket are edges.
         let mut twin = vec![HalfedgeId::INVALID; nh];
         let mut halfedge_edge = vec![EdgeId::INVALID; nh];
         let mut edges = Vec::with_capacity(nh / 2 + 1);
         let mut edge_offsets = Vec::with_capacity(nh / 2 + 2);
         let mut report = NonManifoldReport::default();
-        let mut start = 0;
-        while start < nh {
-            let h0 = sorted[start];
-            let key = |h: HalfedgeId| (corner_vertex[h.idx()].0.min(dest(h.idx()).0), hi_of(h));
-            let k0 = key(h0);
-            let mut end = start + 1;
-            while end < nh && key(sorted[end]) == k0 {
-                end += 1;
-            }
-            let e = EdgeId::new(edges.len());
-            edges.push([VertexId(k0.0), VertexId(k0.1)]);
-            edge_offsets.push(start as u32);
-            for &h in &sorted[start..end] {
-                halfedge_edge[h.idx()] = e;
-            }
-            match end - start {
-                1 => {}
-                2 => {
-                    let h1 = sorted[start + 1];
-                    if corner_vertex[h0.idx()] != corner_vertex[h1.idx()] {
-                        twin[h0.idx()] = h1;
-                        twin[h1.idx()] = h0;
-                    } else {
-                        report.inconsistent_edges.push(e);
-                    }
+        for lo in 0..vertex_count {
+            let bucket_end = bucket_offsets[lo + 1] as usize;
+            let mut start = bucket_offsets[lo] as usize;
+            sorted[start..bucket_end].sort_unstable();
+            while start < bucket_end {
+                let hi = hi_of(sorted[start]);
+                let mut end = start + 1;
+                while end < bucket_end && hi_of(sorted[end]) == hi {
+                    end += 1;
                 }
-                _ => report.edges.push(e),
+                let e = EdgeId::new(edges.len());
+                edges.push([VertexId::new(lo), VertexId(hi)]);
+                edge_offsets.push(start as u32);
+                for &x in &sorted[start..end] {
+                    halfedge_edge[h_of(x).idx()] = e;
+                }
+                match end - start {
+                    1 => {}
+                    2 => {
+                        let (h0, h1) = (h_of(sorted[start]), h_of(sorted[start + 1]));
+                        if corner_vertex[h0.idx()] != corner_vertex[h1.idx()] {
+                            twin[h0.idx()] = h1;
+                            twin[h1.idx()] = h0;
+                        } else {
+                            report.inconsistent_edges.push(e);
+                        }
+                    }
+                    _ => report.edges.push(e),
+                }
+                start = end;
             }
-            start = end;
         }
+        drop(bucket_offsets);
         edge_offsets.push(nh as u32);
-        let edge_halfedges = sorted;
+        let edge_halfedges: Vec<HalfedgeId> = sorted.into_iter().map(h_of).collect();
 
         // Outgoing half-edges per vertex (CSR), with each half-edge's slot.
         let mut vertex_offsets = vec![0u32; vertex_count + 1];
@@ -187,7 +188,18 @@ impl Connectivity {
             if d == 0 {
                 continue;
             }
-            // Union the incident faces across edges at v that have exactly two faces.
+            // Fast path, almost every vertex: a consistently oriented single
+            // fan, walked counter-clockwise by h -> twin(prev(h)) from its
+            // boundary half-edge (no twin) if it has one.
+            if !nonmanifold_edge_vertex[v] && !unoriented_vertex[v] {
+                if let Some(kind) = walk_fan(ring, &twin, &mut ordered) {
+                    vertex_kind[v] = kind;
+                    vertex_out[range].copy_from_slice(&ordered);
+                    continue;
+                }
+            }
+            // Otherwise union the incident faces across edges at v that have
+            // exactly two faces, and count the fans.
             fans_of.reset(d);
             let mut on_boundary = false;
             for (i, &h) in ring.iter().enumerate() {
@@ -217,24 +229,6 @@ impl Connectivity {
             } else {
                 VertexKind::Interior
             };
-            if fans == 1 && !nonmanifold_edge_vertex[v] && !unoriented_vertex[v] && d > 1 {
-                // Start at the boundary half-edge (no twin) if there is one, then
-                // rotate counter-clockwise: h -> twin(prev(h)).
-                let first = ring.iter().copied().find(|h| !twin[h.idx()].is_valid()).unwrap_or(ring[0]);
-                ordered.clear();
-                let mut h = first;
-                loop {
-                    ordered.push(h);
-                    let t = twin[h.prev().idx()];
-                    if !t.is_valid() || t == first || ordered.len() == d {
-                        break;
-                    }
-                    h = t;
-                }
-                if ordered.len() == d {
-                    vertex_out[range].copy_from_slice(&ordered);
-                }
-            }
         }
 
         Self {
@@ -526,6 +520,33 @@ impl Connectivity {
         let c = self.components().count as i64;
         let twice = 2 * c - b - self.euler_characteristic();
         (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u64)
+    }
+}
+
+/// The ring of a vertex none of whose edges is non-manifold or inconsistently
+/// oriented, in counter-clockwise order into `ordered`, when its faces form
+/// one fan: from the outgoing half-edge without twin (an open fan) or from
+/// `ring[0]` (a closed fan), rotating h -> twin(prev(h)). The vertex's kind,
+/// or `None` when the walk does not visit the whole ring (several fans).
+fn walk_fan(ring: &[HalfedgeId], twin: &[HalfedgeId], ordered: &mut Vec<HalfedgeId>) -> Option<VertexKind> {
+    let open = ring.iter().copied().find(|h| !twin[h.idx()].is_valid());
+    let first = open.unwrap_or(ring[0]);
+    ordered.clear();
+    let mut h = first;
+    loop {
+        ordered.push(h);
+        let t = twin[h.prev().idx()];
+        let whole = ordered.len() == ring.len();
+        if !t.is_valid() {
+            return (open.is_some() && whole).then_some(VertexKind::Boundary);
+        }
+        if t == first {
+            return (open.is_none() && whole).then_some(VertexKind::Interior);
+        }
+        if whole {
+            return None;
+        }
+        h = t;
     }
 }
 

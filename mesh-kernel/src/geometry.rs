@@ -219,15 +219,18 @@ impl NormalWeighting {
 pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> {
     let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
     let mut area_sum = vec![DVec3::ZERO; if weighting == NormalWeighting::Max { mesh.vertex_count() } else { 0 }];
-    let length_unit = crate::units::length_unit(mesh);
+    // Multiplying by the inverse of a power of two is as exact as dividing,
+    // and faster; the inverse of a subnormal unit would overflow.
+    let unit = crate::units::length_unit(mesh);
+    let per_unit = 1.0 / unit;
+    let in_unit = |p: DVec3| if per_unit.is_finite() { p * per_unit } else { p / unit };
     for (f, tri) in mesh.faces().iter().enumerate() {
-        let corners = mesh.triangle(FaceId::new(f)).map(|p| p / length_unit);
+        let corners = mesh.triangle(FaceId::new(f)).map(in_unit);
         let area2 = double_area_vector(corners);
-        let unit = unit_vector(area2);
         let weights: [DVec3; 3] = match weighting {
             NormalWeighting::Area => [area2; 3],
-            NormalWeighting::Uniform => [unit; 3],
-            NormalWeighting::Angle => triangle_angles(corners).map(|angle| angle * unit),
+            NormalWeighting::Uniform => [unit_vector(area2); 3],
+            NormalWeighting::Angle => triangle_angles(corners).map(|angle| angle * unit_vector(area2)),
             NormalWeighting::Max => {
                 let [a, b, c] = corners;
                 let len2 = [(b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared()];

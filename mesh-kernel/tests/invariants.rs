@@ -170,6 +170,64 @@ proptest! {
     }
 }
 
+/// A vertex's kind from its definition, by brute force over all faces:
+/// isolated without faces; non-manifold at an edge of 3+ faces or when its
+/// faces split into several fans (faces joined across edges at the vertex
+/// that have exactly two faces); boundary at an edge of one face.
+fn brute_force_kind(faces: &[[u32; 3]], v: u32) -> VertexKind {
+    let around: Vec<usize> = (0..faces.len()).filter(|&f| faces[f].contains(&v)).collect();
+    if around.is_empty() {
+        return VertexKind::Isolated;
+    }
+    let faces_on = |w: u32| around.iter().filter(|&&f| faces[f].contains(&w)).count();
+    let others: Vec<u32> = around.iter().flat_map(|&f| faces[f]).filter(|&w| w != v).collect();
+    let mut fan: Vec<usize> = (0..around.len()).collect();
+    let root = |fan: &Vec<usize>, mut i: usize| {
+        while fan[i] != i {
+            i = fan[i];
+        }
+        i
+    };
+    for i in 0..around.len() {
+        for j in 0..i {
+            let shared = faces[around[i]].iter().any(|&w| w != v && faces[around[j]].contains(&w) && faces_on(w) == 2);
+            if shared {
+                let (a, b) = (root(&fan, i), root(&fan, j));
+                fan[a] = b;
+            }
+        }
+    }
+    let fans = (0..around.len()).filter(|&i| root(&fan, i) == i).count();
+    if fans > 1 || others.iter().any(|&w| faces_on(w) > 2) {
+        VertexKind::NonManifold
+    } else if others.iter().any(|&w| faces_on(w) == 1) {
+        VertexKind::Boundary
+    } else {
+        VertexKind::Interior
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn vertex_kinds_match_their_definition(
+        raw in proptest::collection::vec((0u32..9, 0u32..9, 0u32..9), 0..30),
+    ) {
+        let faces: Vec<[u32; 3]> =
+            raw.into_iter().map(|(a, b, c)| [a, b, c]).filter(|[a, b, c]| a != b && b != c && a != c).collect();
+        let m = TriMesh::new(vec![DVec3::ZERO; 9], faces.clone()).unwrap();
+        for v in 0..9 {
+            prop_assert_eq!(m.connectivity().vertex_kind(VertexId(v)), brute_force_kind(&faces, v), "vertex {}", v);
+        }
+        check_halfedges(&m);
+        // Rings are ordered where the orientation is consistent.
+        if m.connectivity().non_manifold_report().inconsistent_edges.is_empty() {
+            check_rings(&m);
+        }
+    }
+}
+
 #[test]
 fn subdivision_keeps_euler_characteristic() {
     for m in [shapes::torus(2.0, 0.5, 12, 6).unwrap(), shapes::disk(3, 2).unwrap(), shapes::cube(2).unwrap()] {

@@ -42,16 +42,19 @@ impl MassKind {
 
 /// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
 /// the Galerkin matrix, which equals the barycentric area. Isolated vertices
-/// get zero. O(F).
+/// get zero. O(F): the shares of each face in parallel ([`crate::par`]),
+/// then summed at the vertices in face order, so the result does not depend
+/// on the thread count.
 pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
-    let mut m = vec![0.0; mesh.vertex_count()];
-    for f in mesh.face_ids() {
-        let tri = mesh.triangle(f);
-        let corners = mesh.faces()[f.idx()];
-        let share = match kind {
+    let shares = crate::par::map(mesh.face_count(), |f| {
+        let tri = mesh.triangle(crate::FaceId::new(f));
+        match kind {
             MassKind::Barycentric | MassKind::Galerkin => [triangle_area(tri) / 3.0; 3],
             MassKind::MixedVoronoi => mixed_voronoi_corners(tri),
-        };
+        }
+    });
+    let mut m = vec![0.0; mesh.vertex_count()];
+    for (corners, share) in mesh.faces().iter().zip(&shares) {
         for k in 0..3 {
             m[corners[k] as usize] += share[k];
         }
