@@ -5,7 +5,6 @@ use sprs::CsMat;
 use glam::DVec3;
 
 use super::pattern::EdgePattern;
-use crate::clean::is_degenerate_triangle;
 use crate::error::MeshError;
 use crate::mesh::TriMesh;
 use crate::par;
@@ -77,12 +76,17 @@ impl LaplacianKind {
 /// and non-negative on such input.
 #[inline]
 pub fn triangle_cotans(tri: [DVec3; 3]) -> [f64; 3] {
-    if is_degenerate_triangle(tri, DEGENERATE_TOLERANCE) {
+    // In the triangle's own unit (exact), where nothing over- or underflows;
+    // the degeneracy test is that of `crate::clean::is_degenerate_triangle`, on the same
+    // edges (both sides scale alike, so the unit does not change it).
+    let [a, b, c] = crate::geometry::triangle_in_own_unit(tri).0;
+    let (ab, ac, bc) = (b - a, c - a, c - b);
+    let double_area = crate::geometry::norm(ab.cross(ac));
+    let longest2 = ab.length_squared().max(ac.length_squared()).max(bc.length_squared());
+    if !(double_area > DEGENERATE_TOLERANCE * longest2) {
         return [0.0; 3];
     }
-    let [a, b, c] = crate::geometry::triangle_in_own_unit(tri).0;
-    let double_area = crate::geometry::norm((b - a).cross(c - a));
-    [(b - a).dot(c - a) / double_area, (c - b).dot(a - b) / double_area, (a - c).dot(b - c) / double_area]
+    [ab.dot(ac) / double_area, bc.dot(a - b) / double_area, (a - c).dot(-bc) / double_area]
 }
 
 /// For each half-edge `3 f + k`, the cotangent of the angle opposite to it in

@@ -58,15 +58,17 @@ impl EdgePattern {
         Self { indptr, indices, diag, lo_hi, hi_lo }
     }
 
-    fn build(&self, data: Vec<f64>) -> CsMat<f64> {
+    /// The matrix with this pattern and `data`; the pattern's arrays become
+    /// the matrix's (no copy).
+    fn build(self, data: Vec<f64>) -> CsMat<f64> {
         let n = self.diag.len();
         // The pattern is valid by construction (sorted, in range).
-        CsMat::new((n, n), self.indptr.clone(), self.indices.clone(), data)
+        CsMat::new((n, n), self.indptr, self.indices, data)
     }
 
     /// Symmetric matrix with `M_ab = M_ba = weights[e]` for edge e = (a, b) and
     /// diagonal `diagonal(i, sum of weights of edges at i)`.
-    pub fn symmetric(&self, weights: &[f64], diagonal: impl Fn(usize, f64) -> f64) -> CsMat<f64> {
+    pub fn symmetric(self, weights: &[f64], diagonal: impl Fn(usize, f64) -> f64) -> CsMat<f64> {
         let mut data = vec![0.0; self.indices.len()];
         let mut row_sum = vec![0.0; self.diag.len()];
         for (e, &w) in weights.iter().enumerate() {
@@ -85,7 +87,7 @@ impl EdgePattern {
     /// gets `-w_ab = -lo_hi[e]`, row b gets `-w_ba = -hi_lo[e]`, and each
     /// diagonal is its row's weight sum, so rows sum to zero:
     /// `(L q)_i = sum_j w_ij (q_i - q_j)`.
-    pub fn directed(&self, lo_hi: &[f64], hi_lo: &[f64]) -> CsMat<f64> {
+    pub fn directed(self, lo_hi: &[f64], hi_lo: &[f64]) -> CsMat<f64> {
         let mut data = vec![0.0; self.indices.len()];
         for e in 0..lo_hi.len() {
             let (slot_ab, slot_ba) = (self.lo_hi[e], self.hi_lo[e]);
@@ -99,7 +101,7 @@ impl EdgePattern {
     }
 
     /// Symmetric Laplacian `L_ab = -w_e`, `L_ii = sum of w_e at i`.
-    pub fn laplacian(&self, weights: &[f64]) -> CsMat<f64> {
+    pub fn laplacian(self, weights: &[f64]) -> CsMat<f64> {
         self.directed(weights, weights)
     }
 }
