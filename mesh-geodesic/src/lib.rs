@@ -52,16 +52,18 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod dijkstra;
+mod edge_graph;
 pub mod error;
 pub mod exact;
 pub mod fmm;
 #[cfg(feature = "heat")]
 pub mod heat;
+mod radix_heap;
 pub mod sampling;
 mod support;
 pub mod trace;
 
-pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
+pub use dijkstra::{dijkstra, DijkstraGraph, DijkstraOptions, ShortestPaths};
 pub use error::GeodesicError;
 pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};
