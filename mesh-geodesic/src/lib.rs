@@ -5,7 +5,7 @@
 //!
 //! | module | what it holds | chapter / paper |
 //! |---|---|---|
-//! | [`dijkstra`](mod@dijkstra) | multi-source Dijkstra on the edge graph, shortest-path tree, edge paths | 2.6 (upper bound) |
+//! | [`dijkstra`](mod@dijkstra) | multi-source Dijkstra on the edge graph (CSR graph, radix heap), shortest-path tree, edge paths; [`DijkstraGraph`] prepared for repeated queries | 2.6 (upper bound); Ahuja, Mehlhorn, Orlin and Tarjan 1990 |
 //! | [`exact`] | exact polyhedral distances by window propagation with the vertex-distance filter | Mitchell, Mount and Papadimitriou 1987; Surazhsky et al. 2005; Xin and Wang 2009 |
 //! | [`fmm`] | Fast Marching ([`FastMarching`]): eq. 2.33-2.34 plane-wave update, point-source and curved-front updates, obtuse triangles split by unfolding, per-vertex weights P | eq. 2.32-2.34, Kimmel and Sethian 1998 |
 //! | [`heat`] | the heat method ([`HeatGeodesics`]), prefactored, cotangent or intrinsic Delaunay Laplacian, boundary conditions; the whole exponent range of the heat flow, and a far field ([`HeatFarField`]) with per-vertex status ([`HeatStatus`]) beyond it | Crane, Weischedel and Wardetzky 2013 |
@@ -52,16 +52,18 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod dijkstra;
+mod edge_graph;
 pub mod error;
 pub mod exact;
 pub mod fmm;
 #[cfg(feature = "heat")]
 pub mod heat;
+mod radix_heap;
 pub mod sampling;
 mod support;
 pub mod trace;
 
-pub use dijkstra::{dijkstra, DijkstraOptions, ShortestPaths};
+pub use dijkstra::{dijkstra, DijkstraGraph, DijkstraOptions, ShortestPaths};
 pub use error::GeodesicError;
 pub use exact::{exact_distance, ExactOptions};
 pub use fmm::{fmm_distance, FastMarching, FmmOptions, FmmStats, FmmUpdate};

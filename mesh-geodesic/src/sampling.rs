@@ -12,6 +12,7 @@
 use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
 use crate::dijkstra::{propagate, robust_lengths, ShortestPaths};
+use crate::edge_graph::EdgeGraph;
 use crate::error::{GeodesicError, Result};
 use crate::fmm::{FastMarching, FmmOptions, March};
 use crate::support::validate_sources;
@@ -170,26 +171,20 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
 }
 
 /// Incremental front propagation for either metric.
-enum Front<'a> {
+enum Front {
     Fmm(FastMarching, March),
-    /// The mesh, the tree, and whether lengths need the robust norm.
-    Dijkstra(&'a TriMesh, ShortestPaths, bool),
+    /// The edge graph (built once for all samples) and the tree.
+    Dijkstra(EdgeGraph, ShortestPaths),
 }
 
-impl<'a> Front<'a> {
-    fn new(mesh: &'a TriMesh, options: &SamplingOptions) -> Result<Self> {
+impl Front {
+    fn new(mesh: &TriMesh, options: &SamplingOptions) -> Result<Self> {
         let n = mesh.vertex_count();
         Ok(match options.metric {
             SamplingMetric::FastMarching => Front::Fmm(FastMarching::new(mesh, &options.fmm)?, March::new(n)),
-            SamplingMetric::Dijkstra => Front::Dijkstra(
-                mesh,
-                ShortestPaths {
-                    distance: vec![f64::INFINITY; n],
-                    predecessor: vec![VertexId::INVALID; n],
-                    source_index: vec![u32::MAX; n],
-                },
-                robust_lengths(mesh),
-            ),
+            SamplingMetric::Dijkstra => {
+                Front::Dijkstra(EdgeGraph::new(mesh, robust_lengths(mesh), None), ShortestPaths::unreached(n))
+            }
         })
     }
 
@@ -222,10 +217,10 @@ impl<'a> Front<'a> {
     fn add(&mut self, seed: VertexId, label: u32, distance: &mut Vec<f64>, region: &mut Vec<u32>) {
         match self {
             Front::Fmm(fmm, march) => march.run(fmm, &[(seed, label)], f64::INFINITY, distance, region),
-            Front::Dijkstra(mesh, tree, robust) => {
+            Front::Dijkstra(graph, tree) => {
                 std::mem::swap(&mut tree.distance, distance);
                 std::mem::swap(&mut tree.source_index, region);
-                propagate(mesh, &[(seed, label)], f64::INFINITY, *robust, tree);
+                propagate(graph, &[(seed, label)], f64::INFINITY, tree);
                 std::mem::swap(&mut tree.distance, distance);
                 std::mem::swap(&mut tree.source_index, region);
             }

@@ -9,10 +9,14 @@ use crate::error::{GeodesicError, Result};
 
 /// Checks that `sources` is non-empty and every source is a vertex of `mesh`.
 pub(crate) fn validate_sources(mesh: &TriMesh, sources: &[VertexId]) -> Result<()> {
+    validate_source_indices(mesh.vertex_count(), sources)
+}
+
+/// Checks that `sources` is non-empty and every source is below `n`.
+pub(crate) fn validate_source_indices(n: usize, sources: &[VertexId]) -> Result<()> {
     if sources.is_empty() {
         return Err(GeodesicError::NoSources);
     }
-    let n = mesh.vertex_count();
     match sources.iter().find(|s| s.idx() >= n) {
         Some(&vertex) => Err(GeodesicError::SourceOutOfRange { vertex, vertex_count: n }),
         None => Ok(()),
@@ -40,6 +44,35 @@ pub(crate) fn for_each_neighbor(conn: &Connectivity, v: VertexId, mut f: impl Fn
             f(conn.opposite_vertex(h));
         }
     }
+}
+
+/// Vertices in breadth-first order over the edges, one component after
+/// the other (isolated vertices last, in index order), and the inverse
+/// permutation. O(V + E).
+pub(crate) fn breadth_first_order(mesh: &TriMesh) -> (Vec<u32>, Vec<u32>) {
+    let conn = mesh.connectivity();
+    let n = mesh.vertex_count();
+    let mut rank = vec![u32::MAX; n];
+    let mut order = Vec::with_capacity(n);
+    for root in 0..n {
+        if rank[root] != u32::MAX {
+            continue;
+        }
+        rank[root] = order.len() as u32;
+        order.push(root as u32);
+        let mut head = order.len() - 1;
+        while head < order.len() {
+            let v = VertexId(order[head]);
+            head += 1;
+            for_each_neighbor(conn, v, |w| {
+                if rank[w.idx()] == u32::MAX {
+                    rank[w.idx()] = order.len() as u32;
+                    order.push(w.0);
+                }
+            });
+        }
+    }
+    (order, rank)
 }
 
 /// An entry of a binary min-heap keyed by distance (lazy deletion: stale

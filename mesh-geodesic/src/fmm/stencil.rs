@@ -102,7 +102,7 @@ impl Stencils {
                 }
             }
         }
-        let (order, rank) = breadth_first_order(mesh);
+        let (order, rank) = crate::support::breadth_first_order(mesh);
         for (v, e) in &mut virtual_stencils {
             *v = rank[*v as usize];
             e.target = rank[e.target as usize];
@@ -185,35 +185,6 @@ impl AngleSum {
     fn total(&self) -> f64 {
         self.im.atan2(self.re) + std::f64::consts::TAU * f64::from(self.turns)
     }
-}
-
-/// Vertices in breadth-first order over the edges, one component after
-/// the other (isolated vertices last, in index order), and the inverse
-/// permutation. O(V + E).
-fn breadth_first_order(mesh: &TriMesh) -> (Vec<u32>, Vec<u32>) {
-    let conn = mesh.connectivity();
-    let n = mesh.vertex_count();
-    let mut rank = vec![u32::MAX; n];
-    let mut order = Vec::with_capacity(n);
-    for root in 0..n {
-        if rank[root] != u32::MAX {
-            continue;
-        }
-        rank[root] = order.len() as u32;
-        order.push(root as u32);
-        let mut head = order.len() - 1;
-        while head < order.len() {
-            let v = VertexId(order[head]);
-            head += 1;
-            crate::support::for_each_neighbor(conn, v, |w| {
-                if rank[w.idx()] == u32::MAX {
-                    rank[w.idx()] = order.len() as u32;
-                    order.push(w.0);
-                }
-            });
-        }
-    }
-    (order, rank)
 }
 
 /// Gram matrix entries |e1|^2, |e2|^2, e1 . e2 of the corner x with edges
