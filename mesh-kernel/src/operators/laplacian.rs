@@ -83,7 +83,9 @@ pub fn triangle_cotans(tri: [DVec3; 3]) -> [f64; 3] {
     let (ab, ac, bc) = (b - a, c - a, c - b);
     let double_area = crate::geometry::norm(ab.cross(ac));
     let longest2 = ab.length_squared().max(ac.length_squared()).max(bc.length_squared());
-    if !(double_area > DEGENERATE_TOLERANCE * longest2) {
+    // False for NaN too (edges that overflowed).
+    let proper = double_area > DEGENERATE_TOLERANCE * longest2;
+    if !proper {
         return [0.0; 3];
     }
     [ab.dot(ac) / double_area, bc.dot(a - b) / double_area, (a - c).dot(-bc) / double_area]
