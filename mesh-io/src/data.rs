@@ -524,6 +524,34 @@ mod tests {
     }
 
     #[test]
+    fn reordering_carries_every_attribute() {
+        let mesh = mesh_kernel::shapes::icosphere(2).unwrap();
+        let (n, f) = (mesh.vertex_count(), mesh.face_count());
+        let mut data = MeshData::new(mesh.clone());
+        let index: Vec<f64> = (0..n).map(|i| i as f64).collect();
+        data.normals = Some(mesh.positions().to_vec());
+        data.scalars.push(("index".into(), index));
+        data.labels.push(("label".into(), (0..n as i64).collect()));
+        data.face_labels.push(("face".into(), (0..f as i64).collect()));
+        data.corner_uvs = Some((0..f).map(|i| [DVec2::splat(i as f64); 3]).collect());
+        let order = Reordering::spatial(&mesh);
+        let out = data.reordered(&order).unwrap();
+        for v in out.mesh.vertex_ids() {
+            let old = order.old_vertex(v);
+            assert_eq!(out.scalar("index").unwrap()[v.idx()], old.idx() as f64);
+            assert_eq!(out.label("label").unwrap()[v.idx()], old.idx() as i64);
+            assert_eq!(out.normals.as_ref().unwrap()[v.idx()], mesh.position(old));
+        }
+        for face in out.mesh.face_ids() {
+            let old = order.old_face(face).idx();
+            assert_eq!(out.face_label("face").unwrap()[face.idx()], old as i64);
+            assert_eq!(out.corner_uvs.as_ref().unwrap()[face.idx()][0].x, old as f64);
+        }
+        let other = MeshData::new(mesh_kernel::shapes::icosphere(1).unwrap());
+        assert!(other.reordered(&order).is_err());
+    }
+
+    #[test]
     fn view_checks_lengths() {
         let mesh = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
         let short = [0.0; 2];
