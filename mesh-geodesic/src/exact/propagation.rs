@@ -193,7 +193,7 @@ impl<'a> Propagation<'a> {
         let mut batch = std::mem::take(&mut self.batch);
         std::mem::swap(&mut batch, &mut self.lists[h.idx()]);
         batch.retain(|w| !self.beaten_at_ends(h, w));
-        trim_neighbours(&mut batch);
+        trim_overlaps(&mut batch);
         let c = self.geo.apex[h.idx()];
         let (mut best, mut best_x) = self.through_apex[h.idx()];
         for w in &batch {
@@ -256,29 +256,31 @@ impl<'a> Propagation<'a> {
     }
 }
 
-/// Sorts the windows of one list along the edge and trims each against the
-/// next one ([`Window::trim_pair`]), dropping those that vanish. O(k log k)
-/// for k windows.
-fn trim_neighbours(batch: &mut Vec<Window>) {
+/// Sorts the windows of one list along the edge and trims every two that
+/// overlap ([`Window::trim_pair`]), dropping those that vanish. O(k log k +
+/// overlapping pairs) for k windows.
+fn trim_overlaps(batch: &mut Vec<Window>) {
     if batch.len() < 2 {
         return;
     }
     batch.sort_unstable_by(|p, q| p.b0.total_cmp(&q.b0));
-    let mut kept = 0; // batch[..kept] survive so far
-    for k in 0..batch.len() {
-        let mut next = batch[k];
-        let mut keep_next = true;
-        if kept > 0 {
-            let (keep_last, keep) = Window::trim_pair(&mut batch[kept - 1], &mut next);
-            keep_next = keep;
-            if !keep_last {
-                kept -= 1;
+    let dead = |w: &Window| w.b0 == f64::INFINITY;
+    for i in 0..batch.len() {
+        for j in i + 1..batch.len() {
+            if dead(&batch[i]) || batch[j].b0 >= batch[i].b1 {
+                break;
+            }
+            if dead(&batch[j]) {
+                continue;
+            }
+            let (head, tail) = batch.split_at_mut(j);
+            let (keep_i, keep_j) = Window::trim_pair(&mut head[i], &mut tail[0]);
+            for (keep, w) in [(keep_i, &mut head[i]), (keep_j, &mut tail[0])] {
+                if !keep {
+                    w.b0 = f64::INFINITY;
+                }
             }
         }
-        if keep_next {
-            batch[kept] = next;
-            kept += 1;
-        }
     }
-    batch.truncate(kept);
+    batch.retain(|w| !dead(w));
 }

@@ -144,8 +144,10 @@ impl Window {
     }
 }
 
-/// `sqrt(x^2 + y^2)` without `hypot`'s overflow guard (a third of the
-/// run time with it): the mesh is scaled to unit size first.
+/// `sqrt(x^2 + y^2)` without `hypot`'s overflow guard (which took half of
+/// the run time): `exact_distance` first brings the mesh to a length unit
+/// within 2^-100 .. 2^100 (`mesh_kernel::units::normalized`), so squares
+/// neither overflow nor underflow.
 #[inline]
 fn planar_norm(x: f64, y: f64) -> f64 {
     (x * x + y * y).sqrt()
