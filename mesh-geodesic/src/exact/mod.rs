@@ -20,10 +20,10 @@
 //! long as they touch a popped vertex. A list crosses its face A B C as a
 //! group:
 //! 1. the vertex filter of Xin and Wang 2009 ("improved Chen and Han")
-//!    drops a window on A B when `d(A) + |A P| < sigma + |s P|` at its end
-//!    P farthest from A (or the same with B): every point of it is then
-//!    reached more shortly along the edge (also applied when a window is
-//!    created);
+//!    has dropped, when it was created, a window on A B with
+//!    `d(A) + |A P| < sigma + |s P|` at its end P farthest from A (or the
+//!    same with B): every point of it is then reached more shortly along
+//!    the edge;
 //! 2. every two overlapping windows are trimmed against each other as in
 //!    MMP: where one reaches a point of the edge longer than the other, its
 //!    rays there are useless (the equal-distance points are the roots of a

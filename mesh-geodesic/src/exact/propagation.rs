@@ -185,14 +185,15 @@ impl<'a> Propagation<'a> {
         da + w.b1 < w.at(w.b1) * (1.0 - PRUNE_MARGIN) || db + (len - w.b0) < w.at(w.b0) * (1.0 - PRUNE_MARGIN)
     }
 
-    /// Sends the list of `h` across its face A B C: drops the windows the
-    /// edge's vertices beat, trims neighbouring windows against each other
-    /// (after sorting them along the edge), gives C the shortest route
-    /// through any of them, and unfolds each onto A C and C B.
+    /// Sends the list of `h` across its face A B C: trims overlapping
+    /// windows against each other (after sorting them along the edge), gives
+    /// C the shortest route through any of them, and unfolds each onto A C
+    /// and C B. (Filtering the list again by the edge's vertices here, as
+    /// VTP does, dropped 0.02% of the windows on the bunny Loop x2: the
+    /// filter runs when a window is created.)
     fn propagate_list(&mut self, h: HalfedgeId) -> Result<()> {
         let mut batch = std::mem::take(&mut self.batch);
         std::mem::swap(&mut batch, &mut self.lists[h.idx()]);
-        batch.retain(|w| !self.beaten_at_ends(h, w));
         trim_overlaps(&mut batch);
         let c = self.geo.apex[h.idx()];
         let (mut best, mut best_x) = self.through_apex[h.idx()];
