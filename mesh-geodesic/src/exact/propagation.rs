@@ -31,6 +31,9 @@ pub(super) struct Propagation<'a> {
     /// Per half-edge: the windows that crossed its edge into its face and
     /// wait to cross the face.
     lists: Vec<Vec<Window>>,
+    /// Popped pseudo-sources whose distance dropped, to emit again (with
+    /// that distance; stale entries are skipped).
+    reemit: Vec<HeapEntry>,
     /// Half-edges whose list waits in `fifo`.
     queued: Vec<bool>,
     fifo: VecDeque<u32>,
@@ -53,6 +56,7 @@ impl<'a> Propagation<'a> {
             distance: vec![f64::INFINITY; conn.vertex_count()],
             sweep: vec![Sweep::Ahead; conn.vertex_count()],
             vertices: BinaryHeap::new(),
+            reemit: Vec::new(),
             lists: vec![Vec::new(); nh],
             queued: vec![false; nh],
             fifo: VecDeque::new(),
@@ -84,10 +88,10 @@ impl<'a> Propagation<'a> {
             self.sweep[v.idx()] = Sweep::Inside;
             for h in self.conn.outgoing(v).iter().copied() {
                 let d = self.distance[v.idx()] + self.geo.len[h.idx()];
-                self.offer(self.conn.dest(h), d)?;
+                self.offer(self.conn.dest(h), d);
                 let p = h.prev();
                 let d = self.distance[v.idx()] + self.geo.len[p.idx()];
-                self.offer(self.conn.origin(p), d)?;
+                self.offer(self.conn.origin(p), d);
             }
             if e.distance == 0.0 || self.geo.pseudo_source[v.idx()] {
                 self.emit_from_vertex(v)?;
@@ -100,9 +104,17 @@ impl<'a> Propagation<'a> {
                     }
                 }
             }
-            while let Some(h) = self.fifo.pop_front() {
-                self.queued[h as usize] = false;
-                self.propagate_list(HalfedgeId(h))?;
+            loop {
+                if let Some(e) = self.reemit.pop() {
+                    if e.distance == self.distance[e.vertex as usize] {
+                        self.emit_from_vertex(VertexId(e.vertex))?;
+                    }
+                } else if let Some(h) = self.fifo.pop_front() {
+                    self.queued[h as usize] = false;
+                    self.propagate_list(HalfedgeId(h))?;
+                } else {
+                    break;
+                }
             }
         }
         Ok(())
@@ -117,17 +129,17 @@ impl<'a> Propagation<'a> {
     }
 
     /// Lowers the distance of `v` to `d` if smaller: queued if not popped
-    /// yet; a popped pseudo-source emits its windows again at once.
-    fn offer(&mut self, v: VertexId, d: f64) -> Result<()> {
+    /// yet; a popped pseudo-source is queued to emit its windows again.
+    fn offer(&mut self, v: VertexId, d: f64) {
         if d < self.distance[v.idx()] {
             self.distance[v.idx()] = d;
+            let entry = HeapEntry { distance: d, vertex: v.0 };
             if self.sweep[v.idx()] == Sweep::Ahead {
-                self.vertices.push(HeapEntry { distance: d, vertex: v.0 });
+                self.vertices.push(entry);
             } else if self.geo.pseudo_source[v.idx()] {
-                self.emit_from_vertex(v)?;
+                self.reemit.push(entry);
             }
         }
-        Ok(())
     }
 
     /// A source or pseudo-source `v` sends one window, from itself at its
@@ -154,8 +166,8 @@ impl<'a> Propagation<'a> {
         let (t0, t1) = (t0.clamp(0.0, len), t1.clamp(0.0, len));
         let w = Window { b0: t0, b1: t1, source, sigma };
         let (d0, d1) = (w.at(t0), w.at(t1));
-        self.offer(self.conn.dest(e), d0 + t0)?;
-        self.offer(self.conn.origin(e), d1 + (len - t1))?;
+        self.offer(self.conn.dest(e), d0 + t0);
+        self.offer(self.conn.origin(e), d1 + (len - t1));
         let Some(twin) = self.conn.twin(e) else { return Ok(()) };
         if !(t1 > t0) || !(source.y < 0.0) || self.beaten_at_ends(twin, &w) {
             return Ok(());
@@ -204,7 +216,7 @@ impl<'a> Propagation<'a> {
             }
         }
         self.through_apex[h.idx()] = (best, best_x);
-        self.offer(self.conn.opposite_vertex(h), best)?;
+        self.offer(self.conn.opposite_vertex(h), best);
         for w in &batch {
             self.cross_face(h, w, best, best_x)?;
         }
