@@ -205,9 +205,9 @@ fn exact(m: &TriMesh, s: VertexId) -> Res<Vec<f64>> {
 }
 
 /// Exact polyhedral distances: Euclidean on flat meshes, unfoldings on the
-/// cube, MMP (pygeodesic, a committed fixture) on icosphere(3) with the
-/// chord and Fast Marching as bounds, and the great-circle error on
-/// icosphere(5) next to gdist's.
+/// cube, MMP (pygeodesic, committed fixtures) on icosphere(3) with the
+/// chord and Fast Marching as bounds, on icosphere(6) and on the shared
+/// meshes, and the great-circle error on icosphere(5) next to gdist's.
 fn exact_geodesics(v: &mut Validator) {
     let flat = || -> Res<f64> {
         let mut worst = 0.0f64;
@@ -281,10 +281,88 @@ fn exact_geodesics(v: &mut Validator) {
         }
         Err(e) => v.error("exact vs MMP", e),
     }
+    exact_vs_mmp_fixtures(v);
     match sphere_errors(5, |m| exact(m, VertexId(0))) {
         // The polyhedron's own geodesics differ from great circles by this much.
         Ok((max, _)) => v.at_most("icosphere(5) exact polyhedral max error vs great circle (gdist 5e-4)", max, 6e-4),
         Err(e) => v.error("icosphere(5) exact", e),
+    }
+}
+
+/// A fixture of `mesh-geodesic/scripts/exact_fixtures.py`: the largest
+/// distance and (vertex, distance) pairs.
+fn mmp_fixture(name: &str) -> Res<(f64, Vec<(usize, f64)>)> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../mesh-geodesic/tests/fixtures")
+        .join(format!("{name}_exact_v0.txt"));
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut max = None;
+    let mut pairs = Vec::new();
+    for line in text.lines() {
+        if let Some(m) = line.strip_prefix("# max ") {
+            max = Some(m.trim().parse::<f64>().map_err(|e| e.to_string())?);
+        } else if !line.starts_with('#') {
+            let mut it = line.split_whitespace();
+            let (Some(i), Some(d)) = (it.next(), it.next()) else { return Err(format!("bad line `{line}`")) };
+            pairs.push((i.parse::<usize>().map_err(|e| e.to_string())?, d.parse::<f64>().map_err(|e| e.to_string())?));
+        }
+    }
+    Ok((max.ok_or("no `# max` line")?, pairs))
+}
+
+/// Exact distances from vertex 0 against MMP (pygeodesic fixtures, about
+/// 600 vertices per mesh) on the valid shared meshes (closed, genus 3,
+/// boundaries, creases; saddle vertices act as pseudo-sources) and on
+/// icosphere(6) (40,962 vertices): max difference relative to the largest
+/// distance, limit 1e-9.
+fn exact_vs_mmp_fixtures(v: &mut Validator) {
+    let mut cases: Vec<(&str, Option<&str>)> = vec![("icosphere6", None)];
+    let dir = shared_data();
+    if dir.is_some() {
+        for file in [
+            "cgal_elephant.off",
+            "cgal_fandisk.off",
+            "cgal_holes.off",
+            "cgal_mushroom.off",
+            "cgal_nefertiti.off",
+            "npm_bunny.obj",
+        ] {
+            cases.push((file.split('.').next().unwrap_or(file), Some(file)));
+        }
+    } else {
+        v.skip("exact vs MMP fixtures on the shared meshes", no_shared_data());
+    }
+    for (name, file) in cases {
+        let run = || -> Res<(f64, usize)> {
+            let (max, pairs) = mmp_fixture(name)?;
+            let m = match (file, &dir) {
+                (Some(f), Some(d)) => mesh_io::read(d.join(f)).map_err(|e| e.to_string())?.mesh,
+                _ => shapes::icosphere(6).map_err(|e| e.to_string())?,
+            };
+            let d = exact(&m, VertexId(0))?;
+            let mut worst = 0.0f64;
+            let mut wrong_finiteness = 0;
+            for (i, truth) in pairs {
+                let ours = *d.get(i).ok_or(format!("fixture vertex {i} out of range"))?;
+                if ours.is_finite() != truth.is_finite() {
+                    wrong_finiteness += 1;
+                } else if truth.is_finite() {
+                    worst = worst.max((ours - truth).abs() / max);
+                }
+            }
+            Ok((worst, wrong_finiteness))
+        };
+        match run() {
+            Ok((worst, wrong)) => {
+                v.at_most(
+                    format!("exact vs MMP (pygeodesic fixture) on {name}: max difference / max distance"),
+                    worst,
+                    1e-9,
+                );
+                v.equal(format!("exact vs MMP on {name}: vertices with a different finiteness"), wrong as i64, 0);
+            }
+            Err(e) => v.error(format!("exact vs MMP on {name}"), e),
+        }
     }
 }
 
