@@ -79,6 +79,9 @@ impl<'a> Propagation<'a> {
     /// edges, emits windows if it is a source or pseudo-source, and sends
     /// the window lists around it across their faces, which keep going
     /// (first in, first out) while they touch a popped vertex.
+    ///
+    /// # Errors
+    /// `GeodesicError::WorkLimit` once more windows than the bound were created.
     pub fn run(&mut self) -> Result<()> {
         while let Some(e) = self.vertices.pop() {
             let v = VertexId(e.vertex);
