@@ -58,6 +58,8 @@ pub fn run(args: &Args) -> Result<()> {
     if args.names_only {
         return Ok(());
     }
+    let names: Vec<&str> = ours.iter().map(|p| p.name.as_str()).collect();
+    forget_stale_archives(&names)?;
     let mut publish = cargo(&root);
     publish.args(["publish", "--workspace", "--dry-run", "--locked"]);
     if args.no_verify {
@@ -74,6 +76,46 @@ pub fn run(args: &Args) -> Result<()> {
         println!("publish-check: every publishable crate packages (not built from its archive: --no-verify)");
     } else {
         println!("publish-check: every publishable crate packages and builds from its archive");
+    }
+    Ok(())
+}
+
+/// Deletes the sources cargo extracted from this workspace's archives in
+/// earlier dry runs. The dry run serves the archives from a local registry
+/// whose extraction folder (`$CARGO_HOME/registry/src/-HASH/NAME-VERSION`)
+/// depends only on the workspace's path, and cargo does not extract an
+/// archive again over a folder that exists: without this, a second dry run
+/// of the same version builds the dependents against the first run's
+/// sources. Only folders of local registries (named `-HASH`) and of this
+/// workspace's package names are touched.
+///
+/// # Errors
+/// A folder that exists but cannot be read or removed.
+fn forget_stale_archives(names: &[&str]) -> Result<()> {
+    let home = std::env::var_os("CARGO_HOME")
+        .map(std::path::PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| Path::new(&h).join(".cargo")));
+    let Some(sources) = home.map(|h| h.join("registry").join("src")) else { return Ok(()) };
+    let Ok(registries) = std::fs::read_dir(&sources) else { return Ok(()) };
+    for registry in registries {
+        let registry = registry?.path();
+        let local = registry.file_name().and_then(|n| n.to_str()).is_some_and(|n| n.starts_with('-'));
+        if !local || !registry.is_dir() {
+            continue;
+        }
+        for entry in std::fs::read_dir(&registry)? {
+            let path = entry?.path();
+            let Some(folder) = path.file_name().and_then(|n| n.to_str()) else { continue };
+            let ours = names.iter().any(|name| {
+                folder
+                    .strip_prefix(name)
+                    .and_then(|rest| rest.strip_prefix('-'))
+                    .is_some_and(|v| v.starts_with(|c: char| c.is_ascii_digit()))
+            });
+            if ours {
+                std::fs::remove_dir_all(&path)?;
+            }
+        }
     }
     Ok(())
 }
