@@ -8,7 +8,8 @@ use crate::ids::VertexId;
 /// CSR pattern with one diagonal entry per vertex and two entries per edge,
 /// columns sorted in each row. Any operator that couples only vertices sharing
 /// an edge (adjacency, Laplacians, Galerkin mass) fills it from per-edge
-/// values in O(V + E).
+/// values in O(V + E). Filling consumes the pattern (its arrays become the
+/// matrix's, no copy); clone it first to fill several matrices.
 #[derive(Debug, Clone)]
 pub struct EdgePattern {
     indptr: Vec<usize>,
