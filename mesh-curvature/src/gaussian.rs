@@ -3,11 +3,11 @@
 
 use std::f64::consts::{PI, TAU};
 
-use mesh_kernel::{TriMesh, VertexKind};
+use mesh_kernel::{FaceId, TriMesh, VertexKind};
 
 use crate::error::Result;
 use crate::status::{topological_status, VertexStatus};
-use mesh_kernel::operators::MassKind;
+use mesh_kernel::operators::{corner_angles_and_masses, MassKind};
 use mesh_kernel::par;
 
 /// Options of [`gaussian_curvature`].
@@ -72,12 +72,19 @@ pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<G
 /// [`gaussian_curvature`] in the mesh's own unit.
 fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
     let conn = mesh.connectivity();
-    let g = mesh.geometry();
-    let (angles, area) = par::join(|| g.corner_angles(), || g.lumped_mass(options.area));
-    let sums = par::map(mesh.vertex_count(), |i| {
-        let v = mesh_kernel::VertexId::new(i);
-        compensated_sum(conn.outgoing(v).iter().map(|h| angles[h.face().idx()][h.corner()]))
-    });
+    // One pass over the faces: each corner's angle and area, added at its
+    // vertex (the angles with Neumaier's compensation).
+    let sums = par::scatter(
+        mesh.vertex_count(),
+        mesh.faces(),
+        VertexSums::default(),
+        |f| {
+            let tri = mesh.triangle(FaceId::new(f));
+            let (angles, areas) = corner_angles_and_masses(tri, options.area);
+            [0, 1, 2].map(|k| (angles[k], areas[k]))
+        },
+        VertexSums::add,
+    );
     let mut status = topological_status(mesh);
     let n = mesh.vertex_count();
     let mut integrated = vec![0.0; n];
@@ -89,19 +96,39 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
         if matches!(kind, VertexKind::Isolated | VertexKind::NonManifold) {
             continue;
         }
-        let sum = sums[i];
+        let sum = sums[i].angle + sums[i].compensation;
         if kind == VertexKind::Boundary {
             geodesic[i] = PI - sum;
             continue;
         }
         integrated[i] = TAU - sum;
-        if area[i] > 0.0 {
-            pointwise[i] = integrated[i] / area[i];
+        if sums[i].area > 0.0 {
+            pointwise[i] = integrated[i] / sums[i].area;
         } else {
             status[i] = VertexStatus::Degenerate;
         }
     }
-    Ok(GaussianCurvature { integrated, geodesic, pointwise, area: area.to_vec(), status })
+    let area = sums.iter().map(|s| s.area).collect();
+    Ok(GaussianCurvature { integrated, geodesic, pointwise, area, status })
+}
+
+/// The corner angles at a vertex, summed with Neumaier's compensation, and
+/// its area.
+#[derive(Debug, Clone, Copy, Default)]
+struct VertexSums {
+    angle: f64,
+    compensation: f64,
+    area: f64,
+}
+
+impl VertexSums {
+    fn add(&mut self, (angle, area): (f64, f64)) {
+        let t = self.angle + angle;
+        self.compensation +=
+            if self.angle.abs() >= angle.abs() { (self.angle - t) + angle } else { (angle - t) + self.angle };
+        self.angle = t;
+        self.area += area;
+    }
 }
 
 /// Neumaier's compensated sum.

@@ -120,27 +120,60 @@ pub fn angle_between(u: DVec3, v: DVec3) -> f64 {
 /// ([`triangle_in_own_unit`]), so any finite size is fine.
 #[inline]
 pub fn triangle_angles(tri: [DVec3; 3]) -> [f64; 3] {
-    let tri = triangle_in_own_unit(tri).0;
-    // Edge k runs from corner k to corner k + 1.
-    let e = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
-    let double_area = norm(e[0].cross(e[2]));
-    let len2 = e.map(|x| x.length_squared());
-    let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
-        0
-    } else if len2[1] >= len2[2] {
-        1
-    } else {
-        2
-    };
-    // The angle at corner k lies between edge k and the reversed edge k + 2.
-    let angle = |k: usize| double_area.atan2(-e[k].dot(e[(k + 2) % 3]));
-    let (k0, k1, k2) = (m, (m + 1) % 3, (m + 2) % 3);
-    let (a0, a1) = (angle(k0), angle(k1));
-    let mut out = [0.0; 3];
-    out[k0] = a0;
-    out[k1] = a1;
-    out[k2] = std::f64::consts::PI - a0 - a1;
-    out
+    TriangleParts::new(tri).angles()
+}
+
+/// What a triangle's corner angles and corner areas share, in the
+/// triangle's own unit ([`triangle_in_own_unit`]): computed once when both
+/// are needed.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TriangleParts {
+    /// Edge `k` runs from corner `k` to corner `k + 1`.
+    pub edges: [DVec3; 3],
+    /// Squared edge lengths.
+    pub len2: [f64; 3],
+    /// Twice the area.
+    pub double_area: f64,
+    /// The unit the parts are measured in.
+    pub unit: f64,
+}
+
+impl TriangleParts {
+    #[inline]
+    pub fn new(tri: [DVec3; 3]) -> Self {
+        let (tri, unit) = triangle_in_own_unit(tri);
+        let edges = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
+        let double_area = norm(edges[0].cross(edges[2]));
+        Self { edges, len2: edges.map(|x| x.length_squared()), double_area, unit }
+    }
+
+    /// The dot product of the two edges at corner `k` (edge `k` and the
+    /// reversed edge `k + 2`).
+    #[inline]
+    pub fn corner_dot(&self, k: usize) -> f64 {
+        -self.edges[k].dot(self.edges[(k + 2) % 3])
+    }
+
+    /// [`triangle_angles`].
+    #[inline]
+    pub fn angles(&self) -> [f64; 3] {
+        let len2 = self.len2;
+        let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
+            0
+        } else if len2[1] >= len2[2] {
+            1
+        } else {
+            2
+        };
+        let angle = |k: usize| self.double_area.atan2(self.corner_dot(k));
+        let (k0, k1, k2) = (m, (m + 1) % 3, (m + 2) % 3);
+        let (a0, a1) = (angle(k0), angle(k1));
+        let mut out = [0.0; 3];
+        out[k0] = a0;
+        out[k1] = a1;
+        out[k2] = std::f64::consts::PI - a0 - a1;
+        out
+    }
 }
 
 /// The apex of a triangle laid out in the plane from its side lengths: the
@@ -217,46 +250,70 @@ impl NormalWeighting {
 /// are summed in the mesh's [`crate::units::length_unit`], so that no unit
 /// of length over- or underflows them. O(F).
 pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> {
-    let mut normals = vec![DVec3::ZERO; mesh.vertex_count()];
-    let mut area_sum = vec![DVec3::ZERO; if weighting == NormalWeighting::Max { mesh.vertex_count() } else { 0 }];
     // Multiplying by the inverse of a power of two is as exact as dividing,
     // and faster; the inverse of a subnormal unit would overflow.
     let unit = crate::units::length_unit(mesh);
     let per_unit = 1.0 / unit;
     let in_unit = |p: DVec3| if per_unit.is_finite() { p * per_unit } else { p / unit };
-    for (f, tri) in mesh.faces().iter().enumerate() {
-        let corners = mesh.triangle(FaceId::new(f)).map(in_unit);
-        let area2 = double_area_vector(corners);
-        let weights: [DVec3; 3] = match weighting {
-            NormalWeighting::Area => [area2; 3],
-            NormalWeighting::Uniform => [unit_vector(area2); 3],
-            NormalWeighting::Angle => triangle_angles(corners).map(|angle| angle * unit_vector(area2)),
-            NormalWeighting::Max => {
-                let [a, b, c] = corners;
-                let len2 = [(b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared()];
-                // Corner k lies between edge k (to the next corner) and edge k + 2.
-                [0, 1, 2].map(|k| {
-                    area_sum[tri[k] as usize] += area2;
-                    let w = len2[k] * len2[(k + 2) % 3];
-                    if w > 0.0 {
-                        area2 / w
-                    } else {
-                        DVec3::ZERO
-                    }
-                })
-            }
-        };
-        for k in 0..3 {
-            normals[tri[k] as usize] += weights[k];
+    let corners = |f: usize| mesh.triangle(FaceId::new(f)).map(in_unit);
+    let (n, faces) = (mesh.vertex_count(), mesh.faces());
+    if weighting == NormalWeighting::Max {
+        // With the area-weighted sum beside, for where Max's sum vanishes.
+        let sums = par::scatter(
+            n,
+            faces,
+            [DVec3::ZERO; 2],
+            |f| {
+                let c = corners(f);
+                let area2 = double_area_vector(c);
+                normal_weights(weighting, c, area2).map(|w| [w, area2])
+            },
+            |sum, [w, area2]| {
+                sum[0] += w;
+                sum[1] += area2;
+            },
+        );
+        return par::map(n, |v| match unit_vector(sums[v][0]) {
+            DVec3::ZERO => unit_vector(sums[v][1]),
+            unit => unit,
+        });
+    }
+    let mut normals = par::scatter(
+        n,
+        faces,
+        DVec3::ZERO,
+        |f| {
+            let c = corners(f);
+            normal_weights(weighting, c, double_area_vector(c))
+        },
+        |sum, w| *sum += w,
+    );
+    par::update(&mut normals, |n| *n = unit_vector(*n));
+    normals
+}
+
+/// What each corner of a face (given in the mesh's unit, with its doubled
+/// area vector) adds to its vertex's normal.
+#[inline]
+fn normal_weights(weighting: NormalWeighting, corners: [DVec3; 3], area2: DVec3) -> [DVec3; 3] {
+    match weighting {
+        NormalWeighting::Area => [area2; 3],
+        NormalWeighting::Uniform => [unit_vector(area2); 3],
+        NormalWeighting::Angle => triangle_angles(corners).map(|angle| angle * unit_vector(area2)),
+        NormalWeighting::Max => {
+            let [a, b, c] = corners;
+            let len2 = [(b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared()];
+            // Corner k lies between edge k (to the next corner) and edge k + 2.
+            [0, 1, 2].map(|k| {
+                let w = len2[k] * len2[(k + 2) % 3];
+                if w > 0.0 {
+                    area2 / w
+                } else {
+                    DVec3::ZERO
+                }
+            })
         }
     }
-    for (v, n) in normals.iter_mut().enumerate() {
-        *n = match unit_vector(*n) {
-            DVec3::ZERO => area_sum.get(v).map_or(DVec3::ZERO, |a| unit_vector(*a)),
-            unit => unit,
-        };
-    }
-    normals
 }
 
 /// Length of every edge, indexed by [`EdgeId`].

@@ -1,8 +1,9 @@
 //! Data-parallel maps over index ranges, one policy for every crate: rayon
 //! with the `rayon` feature for ranges of at least [`PARALLEL_FROM`] items
 //! (split into tasks of at least [`MIN_TASK`] items), a plain loop
-//! otherwise. Results are identical either way: each output depends only on
-//! its index.
+//! otherwise. Results are identical either way: each output of a map depends
+//! only on its index, and [`scatter`] adds in an order fixed by the mesh, not
+//! by the thread count.
 
 /// Items from which a map runs in parallel: below it, one loop is faster
 /// than handing out tasks (per-face loops of ~10 ns per item).
@@ -19,6 +20,104 @@ pub fn map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
         return (0..n).into_par_iter().with_min_len(MIN_TASK).map(f).collect();
     }
     (0..n).map(f).collect()
+}
+
+/// `items.iter_mut().for_each(f)`, in parallel from [`PARALLEL_FROM`] items.
+pub fn update<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
+    #[cfg(feature = "rayon")]
+    if items.len() >= PARALLEL_FROM {
+        use rayon::prelude::*;
+        items.par_iter_mut().with_min_len(MIN_TASK).for_each(f);
+        return;
+    }
+    items.iter_mut().for_each(f);
+}
+
+/// Faces per chunk of a [`scatter`] (the chunk count depends on the face
+/// count only, so that the order of the sums does too).
+pub const SCATTER_CHUNK: usize = 1 << 15;
+
+/// Adds per-corner values of every face into per-vertex accumulators: for
+/// face `f` with corners `[a, b, c]` and `values(f) = [x, y, z]`, it calls
+/// `add(&mut out[a], x)`, then `b` and `c` likewise; `out` starts as `n`
+/// copies of `init`. Corners must be below `n`.
+///
+/// Two cores split the work without changing the result: the faces form
+/// chunks of [`SCATTER_CHUNK`] faces, each the sole writer of a range of
+/// vertices, which it adds to in face order. A value for a vertex outside
+/// the range is set aside, and what was set aside is added afterwards,
+/// chunk after chunk. The vertex ranges start at the first corner of each
+/// chunk's first face where those increase, so on meshes whose faces follow
+/// their vertices (after [`crate::reorder::Reordering`]) little is set aside;
+/// on others more of the work is sequential, with the same determinism.
+pub fn scatter<A, V>(
+    n: usize,
+    faces: &[[u32; 3]],
+    init: A,
+    values: impl Fn(usize) -> [V; 3] + Sync + Send,
+    add: impl Fn(&mut A, V) + Sync + Send,
+) -> Vec<A>
+where
+    A: Clone + Send + Sync,
+    V: Copy + Send,
+{
+    let mut out = vec![init; n];
+    let chunks = faces.len().div_ceil(SCATTER_CHUNK);
+    if chunks <= 1 {
+        for (f, tri) in faces.iter().enumerate() {
+            let x = values(f);
+            for k in 0..3 {
+                add(&mut out[tri[k] as usize], x[k]);
+            }
+        }
+        return out;
+    }
+    let bounds = vertex_ranges(n, faces, chunks);
+    let mut owned = Vec::with_capacity(chunks);
+    let mut rest = out.as_mut_slice();
+    for c in 0..chunks {
+        let (head, tail) = rest.split_at_mut(bounds[c + 1] - bounds[c]);
+        owned.push((c, head));
+        rest = tail;
+    }
+    let chunk = |(c, range): (usize, &mut [A])| {
+        let (lo, first) = (bounds[c], c * SCATTER_CHUNK);
+        let mut aside = Vec::new();
+        for (i, tri) in faces[first..faces.len().min(first + SCATTER_CHUNK)].iter().enumerate() {
+            let x = values(first + i);
+            for k in 0..3 {
+                match range.get_mut((tri[k] as usize).wrapping_sub(lo)) {
+                    Some(slot) => add(slot, x[k]),
+                    None => aside.push((tri[k], x[k])),
+                }
+            }
+        }
+        aside
+    };
+    #[cfg(feature = "rayon")]
+    let aside: Vec<Vec<(u32, V)>> = {
+        use rayon::prelude::*;
+        owned.into_par_iter().with_max_len(1).map(chunk).collect()
+    };
+    #[cfg(not(feature = "rayon"))]
+    let aside: Vec<Vec<(u32, V)>> = owned.into_iter().map(chunk).collect();
+    for (v, x) in aside.into_iter().flatten() {
+        add(&mut out[v as usize], x);
+    }
+    out
+}
+
+/// Start of each chunk's vertex range (and `n` at the end): the first
+/// corners of the chunks' first faces where they increase, equal ranges
+/// otherwise.
+fn vertex_ranges(n: usize, faces: &[[u32; 3]], chunks: usize) -> Vec<usize> {
+    let mut bounds: Vec<usize> = (0..chunks).map(|c| faces[c * SCATTER_CHUNK][0] as usize).collect();
+    bounds[0] = 0;
+    bounds.push(n);
+    if !bounds.windows(2).all(|w| w[0] < w[1]) {
+        bounds = (0..=chunks).map(|c| c * n / chunks).collect();
+    }
+    bounds
 }
 
 /// Like [`map`], with one scratch value per task (created by `init`) for
@@ -44,4 +143,67 @@ pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> 
     return rayon::join(a, b);
     #[cfg(not(feature = "rayon"))]
     (a(), b())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::random::SplitMix64;
+
+    /// A strip of `2 m` faces over `m + 2` vertices, faces in vertex order.
+    fn strip(m: usize) -> Vec<[u32; 3]> {
+        (0..m as u32).flat_map(|i| [[i, i + 1, i + 2], [i + 2, i + 1, i]]).collect()
+    }
+
+    fn shuffled(mut faces: Vec<[u32; 3]>, seed: u64) -> Vec<[u32; 3]> {
+        let mut rng = SplitMix64::new(seed);
+        for i in (1..faces.len()).rev() {
+            faces.swap(i, rng.below(i + 1));
+        }
+        faces
+    }
+
+    #[test]
+    fn scatter_adds_every_corner_once_in_any_face_order() {
+        for faces in [strip(100), strip(3 * SCATTER_CHUNK), shuffled(strip(3 * SCATTER_CHUNK), 7)] {
+            let n = faces.len() / 2 + 2;
+            // Integer sums are exact: the corner counts and index sums.
+            let out = scatter(
+                n,
+                &faces,
+                (0u64, 0u64),
+                |f| [(1, f as u64); 3],
+                |a, (c, s)| {
+                    a.0 += c;
+                    a.1 += s;
+                },
+            );
+            let mut expect = vec![(0u64, 0u64); n];
+            for (f, tri) in faces.iter().enumerate() {
+                for &v in tri {
+                    expect[v as usize].0 += 1;
+                    expect[v as usize].1 += f as u64;
+                }
+            }
+            assert_eq!(out, expect);
+        }
+    }
+
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn scatter_sums_do_not_depend_on_the_thread_count() {
+        for faces in [strip(5 * SCATTER_CHUNK), shuffled(strip(5 * SCATTER_CHUNK), 3)] {
+            let n = faces.len() / 2 + 2;
+            let run = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| {
+                    scatter(n, &faces, 0.0f64, |f| [1.0 / (f as f64 + 1.0), 0.1, (f as f64).sqrt()], |a, x| *a += x)
+                })
+            };
+            let one = run(1);
+            for threads in [2, 3, 8] {
+                assert!(one.iter().zip(run(threads)).all(|(a, b)| a.to_bits() == b.to_bits()), "{threads} threads");
+            }
+        }
+    }
 }

@@ -5,7 +5,7 @@ use sprs::CsMat;
 
 use super::pattern::EdgePattern;
 use crate::error::MeshError;
-use crate::geometry::triangle_area;
+use crate::geometry::TriangleParts;
 use crate::mesh::TriMesh;
 
 /// Which mass matrix.
@@ -42,24 +42,32 @@ impl MassKind {
 
 /// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
 /// the Galerkin matrix, which equals the barycentric area. Isolated vertices
-/// get zero. O(F): the shares of each face in parallel ([`crate::par`]),
-/// then summed at the vertices in face order, so the result does not depend
-/// on the thread count.
+/// get zero. O(F), on several threads ([`crate::par::scatter`]), with a
+/// result that does not depend on their count.
 pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
-    let shares = crate::par::map(mesh.face_count(), |f| {
-        let tri = mesh.triangle(crate::FaceId::new(f));
-        match kind {
-            MassKind::Barycentric | MassKind::Galerkin => [triangle_area(tri) / 3.0; 3],
-            MassKind::MixedVoronoi => mixed_voronoi_corners(tri),
-        }
-    });
-    let mut m = vec![0.0; mesh.vertex_count()];
-    for (corners, share) in mesh.faces().iter().zip(&shares) {
-        for k in 0..3 {
-            m[corners[k] as usize] += share[k];
-        }
-    }
-    m
+    crate::par::scatter(
+        mesh.vertex_count(),
+        mesh.faces(),
+        0.0,
+        |f| corner_masses(mesh.triangle(crate::FaceId::new(f)), kind),
+        |m, share| *m += share,
+    )
+}
+
+/// What one triangle adds to the lumped mass of each of its corners: a third
+/// of its area (barycentric and Galerkin rows) or its mixed Voronoi shares.
+#[inline]
+pub fn corner_masses(tri: [glam::DVec3; 3], kind: MassKind) -> [f64; 3] {
+    TriangleParts::new(tri).masses(kind)
+}
+
+/// The corner angles of a triangle ([`crate::geometry::triangle_angles`])
+/// and its corner masses ([`corner_masses`]), from one set of edges: what
+/// the angle defect needs at each vertex.
+#[inline]
+pub fn corner_angles_and_masses(tri: [glam::DVec3; 3], kind: MassKind) -> ([f64; 3], [f64; 3]) {
+    let parts = TriangleParts::new(tri);
+    (parts.angles(), parts.masses(kind))
 }
 
 /// The part of a triangle's area given to each corner by the mixed Voronoi
@@ -69,38 +77,45 @@ pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
 /// zero-area triangles give zeros. Per-corner weights of curvature estimators
 /// (Rusinkiewicz 2004) use it directly.
 pub fn mixed_voronoi_corners(tri: [glam::DVec3; 3]) -> [f64; 3] {
-    // Shares of the triangle in its own unit, times the unit squared.
-    let (tri, unit) = crate::geometry::triangle_in_own_unit(tri);
-    let area = triangle_area(tri);
-    if area <= 0.0 || !area.is_finite() {
-        return [0.0; 3];
-    }
-    let square = unit * unit;
-    let [a, b, c] = tri;
-    let (da, db, dc) = ((b - a).dot(c - a), (c - b).dot(a - b), (a - c).dot(b - c));
-    // A corner is obtuse when the dot product of its two edges is negative.
-    let shares = if da < 0.0 {
-        [area / 2.0, area / 4.0, area / 4.0]
-    } else if db < 0.0 {
-        [area / 4.0, area / 2.0, area / 4.0]
-    } else if dc < 0.0 {
-        [area / 4.0, area / 4.0, area / 2.0]
-    } else {
-        voronoi_shares(tri, area, [da, db, dc])
-    };
-    // (0 times an overflowed square is 0, not NaN.)
-    shares.map(|x| if x == 0.0 { 0.0 } else { x * square })
+    TriangleParts::new(tri).masses(MassKind::MixedVoronoi)
 }
 
-/// The Voronoi shares of a triangle without obtuse angles, from its area and
-/// the dot products of the edges at each corner.
-fn voronoi_shares([a, b, c]: [glam::DVec3; 3], area: f64, [da, db, dc]: [f64; 3]) -> [f64; 3] {
-    // cot at a corner = dot / (2 area); the Voronoi area at a is
-    // (|ab|^2 cot C + |ac|^2 cot B) / 8.
-    let inv = 1.0 / (2.0 * area);
-    let (cot_a, cot_b, cot_c) = (da * inv, db * inv, dc * inv);
-    let (l_ab, l_bc, l_ca) = ((b - a).length_squared(), (c - b).length_squared(), (a - c).length_squared());
-    [(l_ab * cot_c + l_ca * cot_b) / 8.0, (l_bc * cot_a + l_ab * cot_c) / 8.0, (l_ca * cot_b + l_bc * cot_a) / 8.0]
+impl TriangleParts {
+    /// [`corner_masses`]: computed in the triangle's own unit, times the
+    /// unit squared.
+    #[inline]
+    fn masses(&self, kind: MassKind) -> [f64; 3] {
+        let square = self.unit * self.unit;
+        let area = 0.5 * self.double_area;
+        if matches!(kind, MassKind::Barycentric | MassKind::Galerkin) {
+            return [area * self.unit * self.unit / 3.0; 3];
+        }
+        if area <= 0.0 || !area.is_finite() {
+            return [0.0; 3];
+        }
+        let [da, db, dc] = [0, 1, 2].map(|k| self.corner_dot(k));
+        // A corner is obtuse when the dot product of its two edges is negative.
+        let shares = if da < 0.0 {
+            [area / 2.0, area / 4.0, area / 4.0]
+        } else if db < 0.0 {
+            [area / 4.0, area / 2.0, area / 4.0]
+        } else if dc < 0.0 {
+            [area / 4.0, area / 4.0, area / 2.0]
+        } else {
+            // cot at a corner = dot / (2 area); the Voronoi area at a is
+            // (|ab|^2 cot C + |ac|^2 cot B) / 8.
+            let inv = 1.0 / (2.0 * area);
+            let (cot_a, cot_b, cot_c) = (da * inv, db * inv, dc * inv);
+            let [l_ab, l_bc, l_ca] = self.len2;
+            [
+                (l_ab * cot_c + l_ca * cot_b) / 8.0,
+                (l_bc * cot_a + l_ab * cot_c) / 8.0,
+                (l_ca * cot_b + l_bc * cot_a) / 8.0,
+            ]
+        };
+        // (0 times an overflowed square is 0, not NaN.)
+        shares.map(|x| if x == 0.0 { 0.0 } else { x * square })
+    }
 }
 
 /// The mass matrix of the given kind as a sparse matrix (diagonal for the
@@ -132,6 +147,7 @@ pub fn diagonal(values: Vec<f64>) -> CsMat<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::triangle_area;
     use crate::shapes;
 
     #[test]

@@ -20,7 +20,7 @@ mod pattern;
 pub use gradient::{divergence, gradient};
 pub use intrinsic::{IntrinsicOptions, IntrinsicTriangulation};
 pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans, LaplacianKind};
-pub use mass::{lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};
+pub use mass::{corner_angles_and_masses, corner_masses, lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};
 pub use pattern::EdgePattern;
 
 use sprs::CsMat;
