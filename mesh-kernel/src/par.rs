@@ -33,6 +33,38 @@ pub fn update<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
     items.iter_mut().for_each(f);
 }
 
+/// Calls `f(i, row)` for every row `i` of a compressed-row array (`row` is
+/// `data[offsets[i]..offsets[i + 1]]`), in parallel from [`PARALLEL_FROM`]
+/// rows. `offsets` must start at 0, never decrease and end at
+/// `data.len()`.
+pub fn rows<T: Send>(data: &mut [T], offsets: &[usize], f: impl Fn(usize, &mut [T]) + Sync + Send) {
+    let n = offsets.len().saturating_sub(1);
+    let block = |first: usize, data: &mut [T]| {
+        let base = offsets[first];
+        for i in first..(first + MIN_TASK).min(n) {
+            f(i, &mut data[offsets[i] - base..offsets[i + 1] - base]);
+        }
+    };
+    #[cfg(feature = "rayon")]
+    if n >= PARALLEL_FROM {
+        use rayon::prelude::*;
+        let mut blocks = Vec::with_capacity(n.div_ceil(MIN_TASK));
+        let mut rest = data;
+        for first in (0..n).step_by(MIN_TASK) {
+            let len = offsets[(first + MIN_TASK).min(n)] - offsets[first];
+            let (head, tail) = rest.split_at_mut(len);
+            blocks.push((first, head));
+            rest = tail;
+        }
+        blocks.into_par_iter().for_each(|(first, data)| block(first, data));
+        return;
+    }
+    for first in (0..n).step_by(MIN_TASK) {
+        let (lo, hi) = (offsets[first], offsets[(first + MIN_TASK).min(n)]);
+        block(first, &mut data[lo..hi]);
+    }
+}
+
 /// Faces per chunk of a [`scatter`] (the chunk count depends on the face
 /// count only, so that the order of the sums does too).
 pub const SCATTER_CHUNK: usize = 1 << 15;
@@ -203,6 +235,22 @@ mod tests {
             let one = run(1);
             for threads in [2, 3, 8] {
                 assert!(one.iter().zip(run(threads)).all(|(a, b)| a.to_bits() == b.to_bits()), "{threads} threads");
+            }
+        }
+    }
+
+    #[test]
+    fn rows_see_their_own_entries() {
+        for n in [10, 3 * PARALLEL_FROM + 5] {
+            // Rows of 0 to 6 entries.
+            let offsets: Vec<usize> = (0..=n).scan(0, |end, i| Some(std::mem::replace(end, *end + i % 7))).collect();
+            let mut data = vec![usize::MAX; offsets[n]];
+            rows(&mut data, &offsets, |i, row| {
+                assert_eq!(row.len(), offsets[i + 1] - offsets[i]);
+                row.iter_mut().for_each(|x| *x = i);
+            });
+            for i in 0..n {
+                assert!(data[offsets[i]..offsets[i + 1]].iter().all(|x| *x == i), "row {i}");
             }
         }
     }

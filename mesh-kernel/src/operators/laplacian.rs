@@ -94,26 +94,30 @@ pub fn triangle_cotans(tri: [DVec3; 3]) -> [f64; 3] {
 /// For each half-edge `3 f + k`, the cotangent of the angle opposite to it in
 /// its face (at corner `k + 2`). O(F).
 pub fn halfedge_cotans(mesh: &TriMesh) -> Vec<f64> {
-    let per_face = par::map(mesh.face_count(), |f| {
+    face_cotans(mesh).into_iter().flatten().collect()
+}
+
+/// [`halfedge_cotans`] grouped by face.
+fn face_cotans(mesh: &TriMesh) -> Vec<[f64; 3]> {
+    par::map(mesh.face_count(), |f| {
         let [c0, c1, c2] = triangle_cotans(mesh.triangle(crate::FaceId::new(f)));
         // Half-edge k runs from corner k to k+1; its opposite corner is k+2.
         [c2, c0, c1]
-    });
-    per_face.into_iter().flatten().collect()
+    })
 }
 
 /// Cotangent weight of every edge, w_ij = (cot alpha_ij + cot beta_ij) / 2
 /// (eq. 2.15 up to the factor 1/2 that makes it the FEM stiffness), summed
 /// over however many faces the edge has (one on the boundary). Negative for
-/// edges opposite obtuse angles (chapter section 2.2.2). O(F).
+/// edges opposite obtuse angles (chapter section 2.2.2). O(F), edges in
+/// parallel.
 pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
-    let cot = halfedge_cotans(mesh);
-    let mut w = vec![0.0; conn.edge_count()];
-    for (h, c) in cot.iter().enumerate() {
-        w[conn.edge(crate::HalfedgeId(h as u32)).idx()] += 0.5 * c;
-    }
-    w
+    let cot = face_cotans(mesh);
+    par::map(conn.edge_count(), |e| {
+        let halfedges = conn.edge_halfedges(crate::EdgeId::new(e));
+        halfedges.iter().fold(0.0, |w, h| w + 0.5 * cot[h.face().idx()][h.corner()])
+    })
 }
 
 /// The cotangent Laplacian L (eq. 2.15): L_ij = -(cot alpha_ij + cot beta_ij)/2,

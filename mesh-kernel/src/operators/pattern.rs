@@ -15,8 +15,8 @@ pub struct EdgePattern {
     indptr: Vec<usize>,
     indices: Vec<usize>,
     diag: Vec<usize>,
-    lo_hi: Vec<usize>,
-    hi_lo: Vec<usize>,
+    /// The edge of each off-diagonal entry (unused on the diagonal).
+    slot_edge: Vec<u32>,
 }
 
 impl EdgePattern {
@@ -43,20 +43,40 @@ impl EdgePattern {
         }
         let mut next_lower: Vec<usize> = indptr[..n].to_vec();
         let mut next_upper: Vec<usize> = diag.iter().map(|d| d + 1).collect();
-        let mut lo_hi = Vec::with_capacity(edges.len());
-        let mut hi_lo = Vec::with_capacity(edges.len());
-        for [a, b] in edges {
+        let mut slot_edge = vec![u32::MAX; indptr[n]];
+        for (e, [a, b]) in edges.iter().enumerate() {
             let (a, b) = (a.idx(), b.idx());
             let s = next_upper[a];
             indices[s] = b;
+            slot_edge[s] = e as u32;
             next_upper[a] += 1;
-            lo_hi.push(s);
             let s = next_lower[b];
             indices[s] = a;
+            slot_edge[s] = e as u32;
             next_lower[b] += 1;
-            hi_lo.push(s);
         }
-        Self { indptr, indices, diag, lo_hi, hi_lo }
+        Self { indptr, indices, diag, slot_edge }
+    }
+
+    /// The data of the matrix whose entry `(i, j)` for the edge `e` between
+    /// `i` and `j` is `-weight(e, i < j)` and whose diagonal entries make
+    /// each row sum to zero; rows in parallel ([`crate::par::rows`]).
+    fn fill_directed(&self, weight: impl Fn(usize, bool) -> f64 + Sync + Send) -> Vec<f64> {
+        let mut data = vec![0.0; self.indices.len()];
+        crate::par::rows(&mut data, &self.indptr, |i, row| {
+            let first = self.indptr[i];
+            let mut sum = 0.0;
+            for (k, value) in row.iter_mut().enumerate() {
+                let s = first + k;
+                if s != self.diag[i] {
+                    let w = weight(self.slot_edge[s] as usize, i < self.indices[s]);
+                    *value = -w;
+                    sum += w;
+                }
+            }
+            row[self.diag[i] - first] = sum;
+        });
+        data
     }
 
     /// The matrix with this pattern and `data`; the pattern's arrays become
@@ -69,17 +89,10 @@ impl EdgePattern {
 
     /// Symmetric matrix with `M_ab = M_ba = weights[e]` for edge e = (a, b) and
     /// diagonal `diagonal(i, sum of weights of edges at i)`.
-    pub fn symmetric(self, weights: &[f64], diagonal: impl Fn(usize, f64) -> f64) -> CsMat<f64> {
-        let mut data = vec![0.0; self.indices.len()];
-        let mut row_sum = vec![0.0; self.diag.len()];
-        for (e, &w) in weights.iter().enumerate() {
-            data[self.lo_hi[e]] = w;
-            data[self.hi_lo[e]] = w;
-            row_sum[self.indices[self.hi_lo[e]]] += w;
-            row_sum[self.indices[self.lo_hi[e]]] += w;
-        }
+    pub fn symmetric(self, weights: &[f64], diagonal: impl Fn(usize, f64) -> f64 + Sync + Send) -> CsMat<f64> {
+        let mut data = self.fill_directed(|e, _| -weights[e]);
         for (i, &d) in self.diag.iter().enumerate() {
-            data[d] = diagonal(i, row_sum[i]);
+            data[d] = diagonal(i, -data[d]);
         }
         self.build(data)
     }
@@ -89,15 +102,7 @@ impl EdgePattern {
     /// diagonal is its row's weight sum, so rows sum to zero:
     /// `(L q)_i = sum_j w_ij (q_i - q_j)`.
     pub fn directed(self, lo_hi: &[f64], hi_lo: &[f64]) -> CsMat<f64> {
-        let mut data = vec![0.0; self.indices.len()];
-        for e in 0..lo_hi.len() {
-            let (slot_ab, slot_ba) = (self.lo_hi[e], self.hi_lo[e]);
-            data[slot_ab] = -lo_hi[e];
-            data[slot_ba] = -hi_lo[e];
-            // Row of slot_ab is a = the column of slot_ba, and vice versa.
-            data[self.diag[self.indices[slot_ba]]] += lo_hi[e];
-            data[self.diag[self.indices[slot_ab]]] += hi_lo[e];
-        }
+        let data = self.fill_directed(|e, lower| if lower { lo_hi[e] } else { hi_lo[e] });
         self.build(data)
     }
 
