@@ -197,3 +197,19 @@ fn every_data_mesh_gives_finite_distances_within_components() {
         }
     }
 }
+
+#[test]
+fn distances_are_the_single_source_fields_in_source_order() {
+    let mesh = shapes::icosphere(4).unwrap();
+    let fmm = FastMarching::new(&mesh, &FmmOptions::default()).unwrap();
+    let sources = [VertexId(5), VertexId(0), VertexId(2000), VertexId(5)];
+    let fields = fmm.distances(&sources).unwrap();
+    assert_eq!(fields.len(), sources.len());
+    for (field, &s) in fields.iter().zip(&sources) {
+        let alone = fmm.distance(&[s]).unwrap();
+        assert!(field.iter().zip(&alone).all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert_eq!(field[s.idx()], 0.0);
+    }
+    assert!(matches!(fmm.distances(&[]), Err(GeodesicError::NoSources)));
+    assert!(matches!(fmm.distances(&[VertexId(5), VertexId(1 << 30)]), Err(GeodesicError::SourceOutOfRange { .. })));
+}

@@ -152,6 +152,17 @@ fn vertex_ranges(n: usize, faces: &[[u32; 3]], chunks: usize) -> Vec<usize> {
     bounds
 }
 
+/// Like [`map`] for items that each cost a millisecond or more (a march, a
+/// solve): in parallel from two items, one item per task.
+pub fn map_heavy<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    #[cfg(feature = "rayon")]
+    if n >= 2 {
+        use rayon::prelude::*;
+        return (0..n).into_par_iter().with_max_len(1).map(f).collect();
+    }
+    (0..n).map(f).collect()
+}
+
 /// Like [`map`], with one scratch value per task (created by `init`) for
 /// buffers reused across items; tasks are 8 times smaller, for items that
 /// each cost microseconds (per-vertex fits).

@@ -230,6 +230,22 @@ impl FastMarching {
         Ok((distance, self.to_vertex_order(&labels)))
     }
 
+    /// One distance field per source, `[i]` from `sources[i]` alone (as
+    /// [`FastMarching::distance`] of `[sources[i]]`): a distance matrix's
+    /// rows, or descriptors from several seeds. The marches run on several
+    /// threads ([`mesh_kernel::par::map_heavy`]); each field is the same
+    /// whatever their count. Cost O(S V log V) for S sources.
+    ///
+    /// # Errors
+    /// `GeodesicError::NoSources` for an empty `sources`; `GeodesicError::SourceOutOfRange` for a source that
+    /// is not a vertex.
+    pub fn distances(&self, sources: &[VertexId]) -> Result<Vec<Vec<f64>>> {
+        if sources.is_empty() {
+            return Err(GeodesicError::NoSources);
+        }
+        mesh_kernel::par::map_heavy(sources.len(), |i| self.distance(&sources[i..=i])).into_iter().collect()
+    }
+
     /// A per-vertex field from the internal numbering to the mesh's.
     pub(crate) fn to_vertex_order<T: Copy>(&self, internal: &[T]) -> Vec<T> {
         let rank = &self.stencils.rank;
