@@ -147,14 +147,16 @@ pub fn vec1<'py, T: numpy::Element>(py: Python<'py>, v: Vec<T>) -> Bound<'py, Py
 /// `n` points as an (n, 3) float64 array, without a copy.
 pub fn points<'py>(py: Python<'py>, p: Vec<DVec3>) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let n = p.len();
-    let flat: Vec<f64> = bytemuck::try_cast_vec(p).unwrap_or_else(|(_, p)| p.iter().flat_map(|x| x.to_array()).collect());
+    let flat: Vec<f64> =
+        bytemuck::try_cast_vec(p).unwrap_or_else(|(_, p)| p.iter().flat_map(|x| x.to_array()).collect());
     flat.into_pyarray(py).reshape([n, 3])
 }
 
 /// `n` 2-D points as an (n, 2) float64 array, without a copy.
 pub fn points2<'py>(py: Python<'py>, p: Vec<DVec2>) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let n = p.len();
-    let flat: Vec<f64> = bytemuck::try_cast_vec(p).unwrap_or_else(|(_, p)| p.iter().flat_map(|x| x.to_array()).collect());
+    let flat: Vec<f64> =
+        bytemuck::try_cast_vec(p).unwrap_or_else(|(_, p)| p.iter().flat_map(|x| x.to_array()).collect());
     flat.into_pyarray(py).reshape([n, 2])
 }
 

@@ -201,15 +201,14 @@ pub fn trace_path<'py>(
     let n = arrays.vertex_count();
     let (start, face) = match (start, face, bary) {
         (Some(s), None, None) => {
-            let s = usize::try_from(s)
-                .ok()
-                .filter(|&s| s < n)
-                .ok_or_else(|| Failure::option(format!("start vertex {s} is out of range: the mesh has {n} vertices")))?;
+            let s = usize::try_from(s).ok().filter(|&s| s < n).ok_or_else(|| {
+                Failure::option(format!("start vertex {s} is out of range: the mesh has {n} vertices"))
+            })?;
             (Some(s), None)
         }
         (None, Some(face), Some(bary)) => {
-            let face = usize::try_from(face)
-                .map_err(|_| Failure::option(format!("face {face} is not a face index")))?;
+            let face =
+                usize::try_from(face).map_err(|_| Failure::option(format!("face {face} is not a face index")))?;
             (None, Some((face, bary)))
         }
         _ => return Err(Failure::option("give either start (a vertex) or both face and bary").into()),
@@ -250,13 +249,11 @@ pub fn farthest_point_sampling<'py>(
     let arrays = Arrays::new(&v, &f)?;
     let n = arrays.vertex_count();
     let start = match start {
-        Some(s) => Some(
-            usize::try_from(s)
-                .ok()
-                .filter(|&s| s < n)
-                .map(mesh_kernel::VertexId::new)
-                .ok_or_else(|| Failure::option(format!("start vertex {s} is out of range: the mesh has {n} vertices")))?,
-        ),
+        Some(s) => {
+            Some(usize::try_from(s).ok().filter(|&s| s < n).map(mesh_kernel::VertexId::new).ok_or_else(|| {
+                Failure::option(format!("start vertex {s} is out of range: the mesh has {n} vertices"))
+            })?)
+        }
         None => None,
     };
     let options = SamplingOptions { metric, start, ..Default::default() };

@@ -127,8 +127,9 @@ fn collect(dict: Option<&Bound<'_, PyDict>>, count: usize, element: &str, vertex
     let Some(dict) = dict else { return Ok(out) };
     for (key, value) in dict.iter() {
         let name: String = key.extract()?;
-        let bad_len =
-            |found: usize| Failure::option(format!("{element} attribute `{name}` has {found} rows for {count} {element}s"));
+        let bad_len = |found: usize| {
+            Failure::option(format!("{element} attribute `{name}` has {found} rows for {count} {element}s"))
+        };
         if let Ok(a) = value.extract::<PyReadonlyArray1<'_, f64>>() {
             let a = a.as_array();
             if a.len() != count {
@@ -247,4 +248,12 @@ pub fn write<'py>(
     d.set_item("values_lost", report.values_lost)?;
     d.set_item("dropped", report.dropped)?;
     Ok(d)
+}
+
+/// A built-in shape of mesh-kernel by name (`icosphere`, `uv-sphere`,
+/// `torus`, `cylinder`, `grid`, `disk`, `cube`) at resolution `n`, as `(V, F)`.
+#[pyfunction]
+pub fn shape(py: Python<'_>, name: String, n: usize) -> PyResult<MeshArrays<'_>> {
+    let mesh = run(py, move || Ok(mesh_kernel::shapes::by_name(&name, n)?))?;
+    mesh_arrays(py, mesh)
 }

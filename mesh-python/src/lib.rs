@@ -38,6 +38,7 @@ fn _meshkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::read_attributes, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;
+    m.add_function(wrap_pyfunction!(io::shape, m)?)?;
     m.add_function(wrap_pyfunction!(operators::cotan_laplacian, m)?)?;
     m.add_function(wrap_pyfunction!(operators::uniform_laplacian, m)?)?;
     m.add_function(wrap_pyfunction!(operators::adjacency_matrix, m)?)?;

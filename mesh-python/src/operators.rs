@@ -198,8 +198,12 @@ pub fn principal_curvature<'py>(
     v: PyReadonlyArray2<'py, f64>,
     f: Faces<'py>,
     method: &str,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)>
-{
+) -> PyResult<(
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+)> {
     let method: TensorMethod = choice("method", method)?;
     let arrays = Arrays::new(&v, &f)?;
     let t = run(py, move || -> Fallible<_> {

@@ -78,7 +78,13 @@ fn point_dict<'py>(py: Python<'py>, p: &SpectralCompressionPoint) -> PyResult<Bo
     Ok(d)
 }
 
-fn transfer(kind: &str, keep: Option<usize>, cutoff: Option<f64>, order: u32, band: Option<(f64, f64, f64)>) -> Fallible<Transfer> {
+fn transfer(
+    kind: &str,
+    keep: Option<usize>,
+    cutoff: Option<f64>,
+    order: u32,
+    band: Option<(f64, f64, f64)>,
+) -> Fallible<Transfer> {
     match (kind, keep, cutoff, band) {
         ("keep", Some(keep), None, None) => Ok(Transfer::KeepFirst(keep)),
         ("low-pass" | "low_pass" | "lowpass", None, Some(cutoff), None) => Ok(Transfer::LowPass { cutoff, order }),

@@ -178,6 +178,16 @@ def write_mesh(path, V, F, vertex_attributes=None, face_attributes=None, *, ply_
                          _attribute_arrays(face_attributes, "face"), ply_binary, allow_precision_loss)
 
 
+def shape(name, n):
+    """A built-in shape with exact ground truth, as ``(V, F)``: ``icosphere``
+    (unit sphere, n subdivisions of the icosahedron: 10 * 4^n + 2 vertices),
+    ``uv-sphere`` (unit, 2n meridians, n bands), ``torus`` (R = 2, r = 0.5,
+    4n x n), ``cylinder`` (radius 1, height 2, open), ``grid`` (unit square),
+    ``disk`` (unit disk, n rings), ``cube`` ([-1, 1]^3); the shapes of
+    ``mesh --shape NAME --res N``."""
+    return _native.shape(str(name), int(n))
+
+
 def info(V, F):
     """The measures of ``mesh info --json`` as a dict (same keys): counts,
     Euler characteristic, genus, components, boundary loops, manifoldness
@@ -689,7 +699,7 @@ def wavelet_compress(V, F, keep_fraction=0.1, scheme="midpoint", wavelet="lifted
 __all__ = [
     "MeshkitError", "InvalidMeshError", "InvalidOptionError", "TopologyError", "DegenerateError",
     "SolverError", "NotConvergedError", "MeshIOError", "MeshFileNotFoundError",
-    "read", "read_attributes", "write", "write_mesh", "info", "info_file",
+    "read", "read_attributes", "write", "write_mesh", "shape", "info", "info_file",
     "cotan_laplacian", "uniform_laplacian", "adjacency_matrix", "gradient", "divergence", "mass_matrix",
     "lumped_mass", "intrinsic_delaunay_laplacian", "vertex_normals", "face_normals", "face_areas",
     "gaussian_curvature", "mean_curvature", "principal_curvature",
