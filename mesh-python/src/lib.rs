@@ -7,11 +7,11 @@
 //!
 //! - `V` is float64 (n, 3), `F` int32 or int64 (m, 3); both are copied once
 //!   into the mesh, under the GIL; results are handed to numpy without a
-//!   copy where the layout allows ([`convert`]).
+//!   copy where the layout allows (module `convert`).
 //! - The GIL is released while Rust computes; signals (Ctrl-C) are checked
-//!   between the stages of a call ([`convert::run`]).
+//!   between the stages of a call (`convert::run`).
 //! - Every error is a typed Python exception carrying the Rust error's text
-//!   ([`errors`]); a panic is caught and raised as `MeshkitError`, never
+//!   (module `errors`); a panic is caught and raised as `MeshkitError`, never
 //!   unwound into the interpreter.
 
 // Python functions return tuples of arrays, spelled out in the signatures.
