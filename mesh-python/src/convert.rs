@@ -133,6 +133,12 @@ impl Arrays {
         self.positions.len()
     }
 
+    /// The positions and triangles, unchecked (for `clean`, which accepts
+    /// triangles with a repeated corner).
+    pub fn into_parts(self) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        (self.positions, self.faces)
+    }
+
     /// The mesh: indices in range, coordinates finite, no repeated corner.
     pub fn mesh(self) -> Fallible<TriMesh> {
         Ok(TriMesh::new(self.positions, self.faces)?)
@@ -190,7 +196,7 @@ pub fn csr(py: Python<'_>, m: CsMat<f64>) -> Csr<'_> {
     (data.into_pyarray(py), widen(indices).into_pyarray(py), widen(indptr).into_pyarray(py), shape)
 }
 
-/// Reads an optional per-vertex float field of length `n` (None: absent).
+/// Reads a per-vertex float field, which must have `n` values.
 pub fn field(values: &PyReadonlyArray1<'_, f64>, n: usize, what: &str) -> Fallible<Vec<f64>> {
     let a = values.as_array();
     if a.len() != n {

@@ -25,6 +25,7 @@ mod io;
 mod operators;
 mod param;
 mod spectral;
+mod topology;
 mod wavelet;
 
 use pyo3::prelude::*;
@@ -53,6 +54,10 @@ fn _meshkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(operators::gaussian_curvature, m)?)?;
     m.add_function(wrap_pyfunction!(operators::mean_curvature, m)?)?;
     m.add_function(wrap_pyfunction!(operators::principal_curvature, m)?)?;
+    m.add_function(wrap_pyfunction!(topology::clean_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(topology::edges, m)?)?;
+    m.add_function(wrap_pyfunction!(topology::boundary_loops, m)?)?;
+    m.add_function(wrap_pyfunction!(topology::connected_components, m)?)?;
     m.add_class::<geodesic::HeatSolver>()?;
     m.add_class::<geodesic::FastMarchingSolver>()?;
     m.add_function(wrap_pyfunction!(geodesic::fmm_distance, m)?)?;

@@ -150,3 +150,15 @@ def test_read_write_round_trip_with_attributes(tmp_path, bunny):
     mk.write_mesh(tmp_path / "f.ply", V, F, face_attributes={"area": mk.face_areas(V, F)}, ply_binary=False)
     _, _, _, fa, _ = mk.read_attributes(tmp_path / "f.ply")
     assert np.abs(fa["area"] - mk.face_areas(V, F)).max() < 1e-12
+
+
+@pytest.mark.parametrize("manifold", [False, True])
+def test_clean_equals_mesh_clean_on_the_dirty_dragon(manifold, data_dir, cli, tmp_path):
+    out = tmp_path / "clean.ply"
+    flags = ["--manifold"] if manifold else []
+    expected = cli("clean", data_dir / "npm_dragon_res3.ply", out, *flags, "--json")
+    V2, F2, report = mk.clean(*mk.read(data_dir / "npm_dragon_res3.ply"), manifold=manifold)
+    assert {k: v for k, v in expected.items() if k in report} == report
+    assert (len(V2), len(F2), mk.info(V2, F2)["manifold"]) == (expected["vertices"], expected["faces"], expected["manifold"])
+    Vc, Fc = mk.read(out)
+    assert np.array_equal(Fc, F2) and np.abs(Vc - V2).max() == 0

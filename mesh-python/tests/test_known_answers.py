@@ -321,3 +321,37 @@ def test_wavelet_analysis_synthesis_and_compression():
     assert np.abs(np.linalg.norm(flat, axis=1) - 1).max() > 0.05
     back = pickle.loads(pickle.dumps(mr))
     assert np.array_equal(back.synthesize()[0], flat)
+
+
+def test_topology_edges_boundary_loops_components():
+    V, F = mk.shape("icosphere", 1)
+    E = mk.edges(V, F)
+    assert E.shape == (120, 2) and (E[:, 0] < E[:, 1]).all() and len({tuple(e) for e in E}) == 120
+    assert mk.boundary_loops(V, F) == []
+    Vd, Fd = mk.shape("disk", 4)
+    (loop,) = mk.boundary_loops(Vd, Fd)
+    assert np.abs(np.hypot(Vd[loop, 0], Vd[loop, 1]) - 1).max() < 1e-12 and len(loop) == 24
+    # Two disjoint copies and an unused vertex.
+    V2 = np.vstack([V, V + 3, [[9, 9, 9]]])
+    F2 = np.vstack([F, F + len(V)])
+    labels = mk.connected_components(V2, F2)
+    assert set(labels[: len(V)]) == {0} and set(labels[len(V) : -1]) == {1} and labels[-1] == -1
+
+
+def test_clean_repairs_what_info_counts():
+    V, F = mk.shape("icosphere", 2)
+    # Split the mesh into a triangle soup (3 vertices per face), duplicate a
+    # face, flip another, add an unused vertex: clean restores the sphere.
+    soup_V = V[F.ravel()]
+    soup_F = np.arange(3 * len(F)).reshape(-1, 3)
+    soup_F = np.vstack([soup_F, soup_F[:1]])
+    soup_F[5] = soup_F[5, ::-1]
+    soup_V = np.vstack([soup_V, [[7, 7, 7]]])
+    i = mk.info(soup_V, soup_F)
+    assert i["components"] > 1 and i["duplicate_faces"] == 1 and i["unreferenced_vertices"] == 1
+    V2, F2, report = mk.clean(soup_V, soup_F)
+    assert (len(V2), len(F2)) == (len(V), len(F))
+    assert report["duplicate_faces"] == 1 and report["flipped_faces"] == 1 and report["unreferenced_vertices"] == 1
+    j = mk.info(V2, F2)
+    assert (j["components"], j["euler_characteristic"], j["manifold"], j["inconsistent_edges"]) == (1, 2, True, 0)
+    assert j["volume"] > 0  # faces outward

@@ -205,6 +205,46 @@ def info_file(path):
 
 
 # --------------------------------------------------------------------------
+# Topology and repair
+
+
+def clean(V, F, weld_tolerance=0.0, drop_degenerate=True, drop_duplicates=True, drop_unreferenced=True,
+          manifold=False, orient=True):
+    """Repairs a mesh (``mesh clean``): welds vertices closer than
+    ``weld_tolerance`` (0: identical positions; None: no welding), drops
+    collapsed, zero-area and duplicate faces and unreferenced vertices, with
+    ``manifold`` cuts it into an oriented 2-manifold, and with ``orient``
+    flips faces so that neighbours agree and closed parts face outward.
+    Returns ``(V, F, report)``, the report counting every change. Triangles
+    repeating a vertex are accepted here (and dropped)."""
+    V = _vertices(V)
+    F = _faces(F)
+    (V2, F2), report = _native.clean_mesh(V, F, None if weld_tolerance is None else float(weld_tolerance),
+                                          bool(drop_degenerate), bool(drop_duplicates), bool(drop_unreferenced),
+                                          bool(manifold), bool(orient))
+    return V2, F2, report
+
+
+def edges(V, F):
+    """The undirected edges (E, 2), smaller vertex first (``igl.edges``)."""
+    V, F = _mesh(V, F)
+    return _native.edges(V, F)
+
+
+def boundary_loops(V, F):
+    """The boundary loops of an oriented manifold, each an array of vertex
+    indices in order (``igl.boundary_loop`` gives the longest); [] when closed."""
+    V, F = _mesh(V, F)
+    return _native.boundary_loops(V, F)
+
+
+def connected_components(V, F):
+    """Component label of every vertex (-1 for vertices no face uses)."""
+    V, F = _mesh(V, F)
+    return _native.connected_components(V, F)
+
+
+# --------------------------------------------------------------------------
 # Operators and normals
 
 
@@ -700,6 +740,7 @@ __all__ = [
     "MeshkitError", "InvalidMeshError", "InvalidOptionError", "TopologyError", "DegenerateError",
     "SolverError", "NotConvergedError", "MeshIOError", "MeshFileNotFoundError",
     "read", "read_attributes", "write", "write_mesh", "shape", "info", "info_file",
+    "clean", "edges", "boundary_loops", "connected_components",
     "cotan_laplacian", "uniform_laplacian", "adjacency_matrix", "gradient", "divergence", "mass_matrix",
     "lumped_mass", "intrinsic_delaunay_laplacian", "vertex_normals", "face_normals", "face_areas",
     "gaussian_curvature", "mean_curvature", "principal_curvature",
