@@ -18,6 +18,7 @@ minus that.
 """
 
 import argparse
+import importlib.metadata
 import os
 import pathlib
 import statistics
@@ -67,8 +68,16 @@ def main():
     Vb, Fb = mk.read(data / "npm_bunny.obj")
     V, F = mk.loop_subdivide(Vb, Fb, 3)
     Vd, Fd = mk.loop_subdivide(*mk.read(data / "cgal_mushroom.off"), 3)
-    print(f"meshkit {mk.__version__}; libigl {getattr(igl, '__version__', 'absent') if igl else 'absent'}; "
-          f"potpourri3d {'present' if pp3d else 'absent'}; numpy {np.__version__}; {os.cpu_count()} cores")
+    def version(dist, module):
+        if module is None:
+            return "absent"
+        try:
+            return importlib.metadata.version(dist)
+        except importlib.metadata.PackageNotFoundError:
+            return "present"
+
+    print(f"meshkit {mk.__version__}; libigl {version('libigl', igl)}; potpourri3d {version('potpourri3d', pp3d)}; "
+          f"numpy {np.__version__}; {os.cpu_count()} cores")
     print(f"bunny x3: {len(V)} vertices, {len(F)} faces; mushroom x3: {len(Vd)} vertices, {len(Fd)} faces\n")
 
     rows = []
