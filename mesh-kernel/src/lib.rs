@@ -19,6 +19,7 @@
 //! | [`random`] | `SplitMix64`, the one seeded generator (jitter, start blocks, tests) | |
 //! | [`reorder`] | cache-friendly vertex and face orders (a Hilbert curve through the bounding box), with the maps back | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
+//! | [`summary`] | [`summary::MeshSummary`]: counts, topology, defects, area, volume and extent in one struct (what `mesh info` prints) | 2.2.2, 2.3 |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
 //! | [`union_find`] | disjoint sets (components, welding, fan splitting) | |
 //! | [`units`] | the unit of length: a mesh rescaled by a power of two so that no algorithm over- or underflows | |
@@ -70,6 +71,7 @@ pub mod shapes;
 #[cfg(feature = "solver")]
 pub mod solver;
 pub mod submesh;
+pub mod summary;
 pub mod union_find;
 pub mod units;
 

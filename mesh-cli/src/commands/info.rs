@@ -1,10 +1,13 @@
 //! `mesh info`: counts, topology, manifoldness and defects.
 
-use mesh_kernel::{clean, geometry, TriMesh};
 use serde::Serialize;
 
 use crate::input::InputArgs;
 use crate::output::{print_json, CliResult};
+
+/// Everything `mesh info` measures (`genus` is `null` when the mesh is not
+/// an oriented manifold).
+pub use mesh_kernel::summary::MeshSummary as Info;
 
 /// Arguments of `mesh info`.
 #[derive(Debug, clap::Args)]
@@ -14,141 +17,6 @@ pub struct Args {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
-}
-
-/// Everything `mesh info` reports. `genus` is `null` when the mesh is not an
-/// oriented manifold.
-#[derive(Debug, Clone, Serialize)]
-pub struct Info {
-    /// Number of vertices (referenced or not).
-    pub vertices: usize,
-    /// Number of triangles.
-    pub faces: usize,
-    /// Number of undirected edges.
-    pub edges: usize,
-    /// chi = V - E + F over referenced vertices (eq. 2.6).
-    pub euler_characteristic: i64,
-    /// Genus from chi = 2(c - g) - b (eq. 2.7).
-    pub genus: Option<u64>,
-    /// Connected components.
-    pub components: usize,
-    /// Boundary loops (`null` when not manifold).
-    pub boundary_loops: Option<usize>,
-    /// Oriented 2-manifold (possibly with boundary).
-    pub manifold: bool,
-    /// Edges with more than two faces.
-    pub non_manifold_edges: usize,
-    /// Vertices with more than one fan of faces.
-    pub non_manifold_vertices: usize,
-    /// Edges whose two faces disagree on orientation.
-    pub inconsistent_edges: usize,
-    /// Zero-area faces.
-    pub degenerate_faces: usize,
-    /// Faces repeating the vertices of another.
-    pub duplicate_faces: usize,
-    /// Vertices no face uses.
-    pub unreferenced_vertices: usize,
-    /// Vertices at exactly the position of a lower-numbered vertex, which
-    /// exact welding would merge (a surface cut along coincident vertices).
-    pub coincident_vertices: usize,
-    /// Total surface area (`null` when it lies outside the range of double
-    /// precision, see `out_of_range`).
-    pub area: Option<f64>,
-    /// Signed enclosed volume of a closed mesh (`null` when open, or outside
-    /// the range of double precision).
-    pub volume: Option<f64>,
-    /// Quantities whose value has no double-precision representation (a
-    /// mesh in units of 1e-300 has areas of 1e-600), with their order of
-    /// magnitude: never printed as 0 or infinity.
-    pub out_of_range: Vec<String>,
-    /// Mean edge length.
-    pub mean_edge_length: f64,
-    /// Bounding box minimum corner.
-    pub bbox_min: Option<[f64; 3]>,
-    /// Bounding box maximum corner.
-    pub bbox_max: Option<[f64; 3]>,
-}
-
-impl Info {
-    /// Measures a mesh.
-    pub fn of(mesh: &TriMesh) -> Self {
-        let c = mesh.connectivity();
-        let report = c.non_manifold_report();
-        let bbox = geometry::bounding_box(mesh);
-        let closed = c.boundary_loop_count() == Some(0);
-        // Area and volume measured on the mesh in its power-of-two unit,
-        // then carried back (or reported as out of range).
-        let (normalized, unit) = mesh_kernel::units::normalized(mesh);
-        let mut out_of_range = Vec::new();
-        let mut carry = |name: &str, inner: f64, degree: i32| match rescaled(inner, unit, degree) {
-            Ok(v) => Some(v),
-            Err(magnitude) => {
-                out_of_range.push(format!("{name} {magnitude}"));
-                None
-            }
-        };
-        let area = carry("area", geometry::surface_area(&normalized), 2);
-        let volume = if closed { carry("volume", geometry::enclosed_volume(&normalized), 3) } else { None };
-        Info {
-            vertices: mesh.vertex_count(),
-            faces: mesh.face_count(),
-            edges: c.edge_count(),
-            euler_characteristic: c.euler_characteristic(),
-            genus: c.genus(),
-            components: c.components().count,
-            boundary_loops: c.boundary_loop_count(),
-            manifold: c.is_manifold(),
-            non_manifold_edges: report.edges.len(),
-            non_manifold_vertices: report.vertices.len(),
-            inconsistent_edges: report.inconsistent_edges.len(),
-            degenerate_faces: clean::degenerate_faces(mesh, clean::CleanOptions::default().degenerate_tolerance).len(),
-            duplicate_faces: clean::duplicate_faces(mesh.faces()).len(),
-            unreferenced_vertices: clean::unreferenced_vertices(mesh.vertex_count(), mesh.faces()).len(),
-            coincident_vertices: clean::weld_vertices(mesh.positions(), &[], 0.0).map_or(0, |(_, _, merged)| merged),
-            area,
-            volume,
-            out_of_range,
-            mean_edge_length: geometry::mean_edge_length(mesh),
-            bbox_min: bbox.map(|b| b.min.to_array()),
-            bbox_max: bbox.map(|b| b.max.to_array()),
-        }
-    }
-
-    fn print_text(&self, name: &str) {
-        let opt = |x: Option<usize>| x.map_or("n/a (not manifold)".to_owned(), |v| v.to_string());
-        println!("mesh: {name}");
-        println!("  vertices           {}", self.vertices);
-        println!("  faces              {}", self.faces);
-        println!("  edges              {}", self.edges);
-        println!("  euler char. (2.6)  {}", self.euler_characteristic);
-        println!("  genus (2.7)        {}", self.genus.map_or("n/a (not manifold)".to_owned(), |g| g.to_string()));
-        println!("  components         {}", self.components);
-        println!("  boundary loops     {}", opt(self.boundary_loops));
-        println!("  manifold           {}", if self.manifold { "yes" } else { "no" });
-        println!("  non-manifold edges {}", self.non_manifold_edges);
-        println!("  non-manifold verts {}", self.non_manifold_vertices);
-        println!("  inconsistent edges {}", self.inconsistent_edges);
-        println!("  degenerate faces   {}", self.degenerate_faces);
-        println!("  duplicate faces    {}", self.duplicate_faces);
-        println!("  unreferenced verts {}", self.unreferenced_vertices);
-        println!("  coincident verts   {}", self.coincident_vertices);
-        if let Some(a) = self.area {
-            println!("  area               {}", number(a));
-        }
-        if let Some(v) = self.volume {
-            println!("  volume             {}", number(v));
-        }
-        for q in &self.out_of_range {
-            println!("  {q} (outside the range of double precision)");
-        }
-        println!("  mean edge length   {}", number(self.mean_edge_length));
-        if let (Some(lo), Some(hi)) = (self.bbox_min, self.bbox_max) {
-            println!(
-                "  bounding box       [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}]",
-                lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
-            );
-        }
-    }
 }
 
 /// What the reader changed, as `mesh info --json` prints it under `read`.
@@ -230,7 +98,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     if args.json {
         print_json(&InfoJson { info: &info, attributes, read: ReadSummary::from(&data.report) })
     } else {
-        info.print_text(&args.input.describe());
+        print_text(&info, &args.input.describe());
         if attributes.is_empty() {
             println!("  attributes         none");
         }
@@ -242,16 +110,40 @@ pub fn run(args: &Args) -> CliResult<()> {
     }
 }
 
-/// A quantity of degree `degree` in lengths, measured as `inner` on the mesh
-/// divided by `unit`: its value on the mesh, or its order of magnitude when
-/// that value has no double-precision representation.
-fn rescaled(inner: f64, unit: f64, degree: i32) -> Result<f64, String> {
-    let value = (0..degree).fold(inner, |v, _| v * unit);
-    if inner != 0.0 && inner.is_finite() && !(value.is_finite() && value.abs() >= f64::MIN_POSITIVE) {
-        let exponent = (inner.abs().log10() + f64::from(degree) * unit.log10()).floor();
-        Err(format!("about {}1e{exponent}", if inner < 0.0 { "-" } else { "" }))
-    } else {
-        Ok(value)
+/// `mesh info`'s text output of the measures.
+fn print_text(info: &Info, name: &str) {
+    let opt = |x: Option<usize>| x.map_or("n/a (not manifold)".to_owned(), |v| v.to_string());
+    println!("mesh: {name}");
+    println!("  vertices           {}", info.vertices);
+    println!("  faces              {}", info.faces);
+    println!("  edges              {}", info.edges);
+    println!("  euler char. (2.6)  {}", info.euler_characteristic);
+    println!("  genus (2.7)        {}", info.genus.map_or("n/a (not manifold)".to_owned(), |g| g.to_string()));
+    println!("  components         {}", info.components);
+    println!("  boundary loops     {}", opt(info.boundary_loops));
+    println!("  manifold           {}", if info.manifold { "yes" } else { "no" });
+    println!("  non-manifold edges {}", info.non_manifold_edges);
+    println!("  non-manifold verts {}", info.non_manifold_vertices);
+    println!("  inconsistent edges {}", info.inconsistent_edges);
+    println!("  degenerate faces   {}", info.degenerate_faces);
+    println!("  duplicate faces    {}", info.duplicate_faces);
+    println!("  unreferenced verts {}", info.unreferenced_vertices);
+    println!("  coincident verts   {}", info.coincident_vertices);
+    if let Some(a) = info.area {
+        println!("  area               {}", number(a));
+    }
+    if let Some(v) = info.volume {
+        println!("  volume             {}", number(v));
+    }
+    for q in &info.out_of_range {
+        println!("  {q} (outside the range of double precision)");
+    }
+    println!("  mean edge length   {}", number(info.mean_edge_length));
+    if let (Some(lo), Some(hi)) = (info.bbox_min, info.bbox_max) {
+        println!(
+            "  bounding box       [{:.4}, {:.4}, {:.4}] .. [{:.4}, {:.4}, {:.4}]",
+            lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+        );
     }
 }
 
