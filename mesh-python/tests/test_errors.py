@@ -199,12 +199,18 @@ def test_the_gil_is_released_during_computation():
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_ctrl_c_interrupts_between_stages():
     V, F = mk.loop_subdivide(*mk.shape("icosphere", 3), 3)
+    # Python's own Ctrl-C handler, also where the run inherited SIGINT as
+    # ignored (a job started in the background by a non-interactive shell).
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.01, lambda: os.kill(os.getpid(), signal.SIGINT))
-    timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        for _ in range(100):  # each call: validation, then the distance computation
-            mk.exact_distance(V, F, [0])
-    timer.cancel()
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            for _ in range(100):  # each call: validation, then the distance computation
+                mk.exact_distance(V, F, [0])
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
 
 
 def test_prepared_solvers_pickle(sphere):
