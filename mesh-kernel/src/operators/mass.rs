@@ -55,7 +55,8 @@ pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
 }
 
 /// What one triangle adds to the lumped mass of each of its corners: a third
-/// of its area (barycentric and Galerkin rows) or its mixed Voronoi shares.
+/// of its area (barycentric and Galerkin rows) or its mixed Voronoi shares
+/// (Meyer, Desbrun, Schroeder and Barr 2003; [`mixed_voronoi_corners`]).
 #[inline]
 pub fn corner_masses(tri: [glam::DVec3; 3], kind: MassKind) -> [f64; 3] {
     TriangleParts::new(tri).masses(kind)
