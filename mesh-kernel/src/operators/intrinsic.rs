@@ -131,20 +131,7 @@ impl IntrinsicTriangulation {
     /// three lengths (law of cosines over twice Heron's area). Zero for a
     /// face of zero area (possible only without mollification).
     pub fn opposite_cotan(&self, h: HalfedgeId) -> f64 {
-        let (a, b, c) = (self.lengths[h.idx()], self.lengths[h.next().idx()], self.lengths[h.prev().idx()]);
-        // In the triangle's own unit: the products of lengths stay in range.
-        let longest = a.max(b).max(c);
-        if !(longest > 0.0 && longest.is_finite()) {
-            return 0.0;
-        }
-        let unit = crate::geometry::power_of_two_near(longest);
-        let (a, b, c) = (a / unit, b / unit, c / unit);
-        let area4 = 4.0 * heron_area(a, b, c);
-        if area4 > 0.0 {
-            (b * b + c * c - a * a) / area4
-        } else {
-            0.0
-        }
+        cotan_from_lengths(self.lengths[h.idx()], self.lengths[h.next().idx()], self.lengths[h.prev().idx()])
     }
 
     /// Cotangent weight of the edge of `h`: half the sum of the opposite
@@ -175,6 +162,7 @@ impl IntrinsicTriangulation {
             queued[h.idx()] = false;
             let t = self.twin[h.idx()];
             if !t.is_valid() || t.face() == h.face() || self.edge_cotan_weight(h) >= -tolerance {
+                // The same test as `is_delaunay_edge` on this edge's five lengths.
                 continue;
             }
             if self.flips >= max_flips {
@@ -305,6 +293,36 @@ fn rotate(v: [u32; 3], k: usize) -> [u32; 3] {
     out
 }
 
+/// Cotangent of the angle opposite the side of length `a` in a triangle of
+/// sides `a`, `b`, `c` (law of cosines over twice Heron's area), computed in
+/// the triangle's own power-of-two unit so that no product of lengths over-
+/// or underflows. Zero for a triangle of zero area or non-finite lengths.
+pub fn cotan_from_lengths(a: f64, b: f64, c: f64) -> f64 {
+    let longest = a.max(b).max(c);
+    if !(longest > 0.0 && longest.is_finite()) {
+        return 0.0;
+    }
+    let unit = crate::geometry::power_of_two_near(longest);
+    let (a, b, c) = (a / unit, b / unit, c / unit);
+    let area4 = 4.0 * heron_area(a, b, c);
+    if area4 > 0.0 {
+        (b * b + c * c - a * a) / area4
+    } else {
+        0.0
+    }
+}
+
+/// The Delaunay test of an interior edge a b between triangles (a, b, c) and
+/// (b, a, d), on lengths only: the edge is locally Delaunay when the sum of
+/// the cotangents of the two angles opposite it (at c and at d) is at least
+/// `-2 * tolerance`, i.e. its cotangent weight is at least `-tolerance`; in
+/// the plane, when d is not strictly inside the circumcircle of a b c.
+/// [`IntrinsicTriangulation::flip_to_delaunay`] flips exactly the edges that
+/// fail this test; the planar Lawson flips of the workspace use it too.
+pub fn is_delaunay_edge(l_ab: f64, l_bc: f64, l_ca: f64, l_ad: f64, l_db: f64, tolerance: f64) -> bool {
+    0.5 * cotan_from_lengths(l_ab, l_bc, l_ca) + 0.5 * cotan_from_lengths(l_ab, l_ad, l_db) >= -tolerance
+}
+
 /// Triangle area from its side lengths, Kahan's numerically stable Heron
 /// formula; 0 when the lengths violate the triangle inequality.
 pub fn heron_area(a: f64, b: f64, c: f64) -> f64 {
@@ -392,6 +410,20 @@ mod tests {
         let l = t.cotan_laplacian();
         assert!(l.data().iter().all(|v| v.is_finite()));
         assert!(t.interior_edge_weights().iter().all(|w| *w >= -1e-9));
+    }
+
+    #[test]
+    fn delaunay_edge_test_is_the_empty_circle_test() {
+        // a = (0, 0), b = (1, 0), c = (1, 1): the circumcircle has centre
+        // (0.5, 0.5); d below a b outside, inside and on it.
+        let len = |p: (f64, f64), q: (f64, f64)| ((p.0 - q.0).powi(2) + (p.1 - q.1).powi(2)).sqrt();
+        let (a, b, c) = ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0));
+        let test = |d: (f64, f64)| is_delaunay_edge(len(a, b), len(b, c), len(c, a), len(a, d), len(d, b), 1e-12);
+        assert!(test((0.5, -0.5)), "outside the circle");
+        assert!(!test((0.5, -0.1)), "inside the circle of radius 0.707 centred (0.5, 0.5)");
+        assert!(test((0.5, 0.5 - 0.5 * 2f64.sqrt())), "co-circular is Delaunay");
+        assert!((cotan_from_lengths(1.0, 1.0, 2f64.sqrt()) - 1.0).abs() < 1e-15, "45 degrees");
+        assert_eq!(cotan_from_lengths(1.0, 0.5, 0.5), 0.0, "zero area");
     }
 
     #[test]

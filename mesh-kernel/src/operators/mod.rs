@@ -18,7 +18,7 @@ pub mod mass;
 mod pattern;
 
 pub use gradient::{divergence, gradient};
-pub use intrinsic::{IntrinsicOptions, IntrinsicTriangulation};
+pub use intrinsic::{cotan_from_lengths, is_delaunay_edge, IntrinsicOptions, IntrinsicTriangulation};
 pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans, LaplacianKind};
 pub use mass::{corner_angles_and_masses, corner_masses, lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};
 pub use pattern::EdgePattern;
