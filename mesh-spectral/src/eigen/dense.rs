@@ -52,7 +52,9 @@ pub(crate) fn smallest(c: &Component, want: usize, deflate: bool) -> Result<(Vec
     let mut a = Mat::from_fn(p, p, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]) * d[i] * d[j]);
     if deflate {
         let gershgorin = (0..p).map(|i| (0..p).map(|j| a[(i, j)].abs()).sum::<f64>()).fold(0.0, f64::max);
-        let c0 = 2.0 * gershgorin + 1.0;
+        // Relative to A (its unit is the pencil's): an absolute `+ 1` would
+        // swamp a pencil of small eigenvalues with rounding.
+        let c0 = if gershgorin > 0.0 { 2.0 * gershgorin } else { 1.0 };
         let y0: Vec<f64> = d.iter().map(|&di| 1.0 / (di * c.area.sqrt())).collect();
         a += Mat::from_fn(p, p, |i, j| c0 * y0[i] * y0[j]);
     }

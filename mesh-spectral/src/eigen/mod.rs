@@ -375,10 +375,13 @@ pub fn eigenpairs(l: &CsMat<f64>, mass: &[f64], k: usize, options: &EigenOptions
 }
 
 /// Powers of two near the sizes of `L` and `M` (`M`'s an even power, so that
-/// its square root is exact), by which the pencil is divided when either lies
-/// outside `[2^-100, 2^100]`: a mesh's mass matrix carries the square of its
-/// unit of length, and the solver's products of masses would over- or
-/// underflow. Division by powers of two changes no digit of the answer.
+/// its square root is exact), by which the pencil is divided: a mesh's mass
+/// matrix carries the square of its unit of length, and the solver works on
+/// a pencil of size near 1 whatever that unit is, so that every step (the
+/// shift, the deflation of the constant, the tolerances) sees the same
+/// numbers for a mesh in millimetres and in metres, and products of masses
+/// never over- or underflow. Division by powers of two changes no digit of
+/// the answer.
 struct Units {
     l: f64,
     m: f64,
@@ -387,13 +390,9 @@ struct Units {
 impl Units {
     fn of(l: &CsMat<f64>, m: &CsMat<f64>) -> Self {
         let unit = |a: &CsMat<f64>| mesh_kernel::units::unit_of(a.data().iter().copied());
-        let safe = |x: f64| (2f64.powi(-100)..=2f64.powi(100)).contains(&x);
-        let (lu, mu) = (unit(l), unit(m));
-        if safe(lu) && safe(mu) {
-            return Self { l: 1.0, m: 1.0 };
-        }
+        let mu = unit(m);
         let even = 2f64.powi(mu.log2().round() as i32 & !1);
-        Self { l: lu, m: even }
+        Self { l: unit(l), m: even }
     }
 
     fn is_identity(&self) -> bool {
