@@ -49,6 +49,8 @@ enum Command {
     Subdivide(commands::wavelet::SubdivideArgs),
     /// Wavelet multiresolution analysis: statistics, compression, levels of detail.
     Wavelet(commands::wavelet::Args),
+    /// Operations over every mesh of a folder or pattern, in parallel and resumable, to JSON lines.
+    Batch(commands::batch::Args),
 }
 
 impl Command {
@@ -66,7 +68,7 @@ impl Command {
             Command::Spectral(a) => a.input_file(),
             Command::Subdivide(a) => a.input_file(),
             Command::Wavelet(a) => a.input_file(),
-            Command::Generate(_) | Command::Nurbs(_) => None,
+            Command::Generate(_) | Command::Nurbs(_) | Command::Batch(_) => None,
         }
     }
 
@@ -121,6 +123,7 @@ fn main() {
         Command::Spectral(args) => commands::spectral::run(args),
         Command::Subdivide(args) => commands::wavelet::run_subdivide(args),
         Command::Wavelet(args) => commands::wavelet::run(args),
+        Command::Batch(args) => commands::batch::run(args),
     };
     if let Err(e) = result {
         let e = errors::translate(e, &cli.command.given(), cli.command.input_file());

@@ -108,3 +108,16 @@ pub fn binary_ply() -> mesh_io::WriteOptions {
 pub fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
+
+/// Minimum, maximum, mean and count of the finite values at the indices
+/// `keep` accepts; `null` when there are none.
+pub fn stats(values: &[f64], keep: impl Fn(usize) -> bool) -> serde_json::Value {
+    let kept: Vec<f64> =
+        values.iter().enumerate().filter(|(i, v)| keep(*i) && v.is_finite()).map(|(_, v)| *v).collect();
+    if kept.is_empty() {
+        return serde_json::Value::Null;
+    }
+    let min = kept.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = kept.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    serde_json::json!({ "min": min, "max": max, "mean": kept.iter().sum::<f64>() / kept.len() as f64, "count": kept.len() })
+}

@@ -6,6 +6,9 @@
 //! - `cargo xtask bench --mesh PATH [--json OUT] [--runs N]`: times every
 //!   implemented operation on one mesh, single-threaded and with default
 //!   threads, under stable names shared with `../shared/peers/peer_bench.py`.
+//! - `cargo xtask dataset [--out DIR] [--count N] [--seed S]`: mesh files
+//!   for `mesh batch` and the Dask example (shapes and shared meshes, moved and
+//!   scaled, in every format, one in 50 broken on purpose).
 //! - `cargo xtask render [--out DIR]`: a gallery of PNG pictures made with
 //!   `mesh render`.
 //! - `cargo xtask publish-check [--names-only]`: every package name free on crates.io
@@ -17,6 +20,7 @@
 //!   also a test of this crate.
 
 mod bench;
+mod dataset;
 mod fuzz;
 mod publish_check;
 mod render;
@@ -42,6 +46,8 @@ enum Command {
     Validate(validate::Args),
     /// Time every operation on a mesh.
     Bench(bench::Args),
+    /// Write a dataset of mesh files for `mesh batch` and the Dask example.
+    Dataset(dataset::Args),
     /// Render a gallery of PNG pictures.
     Render(render::Args),
     /// Check names on crates.io and dry-run `cargo publish --workspace`.
@@ -61,6 +67,7 @@ fn main() {
     let result = required.and_then(|()| match &cli.command {
         Command::Validate(args) => validate::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Dataset(args) => dataset::run(args),
         Command::Render(args) => render::run(args),
         Command::PublishCheck(args) => publish_check::run(args),
         Command::Fuzz(args) => fuzz::run(args),

@@ -1,5 +1,6 @@
 //! One module per subcommand, each with `Args` and `run`.
 
+pub mod batch;
 pub mod clean;
 pub mod convert;
 pub mod curvature;

@@ -21,7 +21,7 @@ use super::info::Info;
 use super::render::Up;
 use crate::choice::choice;
 use crate::input::InputArgs;
-use crate::output::{check_output, finite, write_json, write_mesh, CliResult};
+use crate::output::{check_output, finite, stats, write_json, write_mesh, CliResult};
 use crate::render::{render_png, RenderOptions};
 
 /// Arguments of `mesh report`.
@@ -241,18 +241,6 @@ fn operators_section(report: &mut Report, mesh: &TriMesh, feature_angle: f64) ->
     }))
 }
 
-/// Min, max and mean of the values where `keep` holds.
-fn stats(values: &[f64], keep: impl Fn(usize) -> bool) -> Value {
-    let kept: Vec<f64> =
-        values.iter().enumerate().filter(|(i, v)| keep(*i) && v.is_finite()).map(|(_, v)| *v).collect();
-    if kept.is_empty() {
-        return Value::Null;
-    }
-    let min = kept.iter().copied().fold(f64::INFINITY, f64::min);
-    let max = kept.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    json!({ "min": min, "max": max, "mean": kept.iter().sum::<f64>() / kept.len() as f64, "count": kept.len() })
-}
-
 /// Pointwise Gaussian and mean curvature from the curvature tensor (eq.
 /// 2.19-2.20, 2.27-2.31), the discrete values (eq. 2.25, 2.26) and their
 /// integrals, with the vertices flagged where a value is not an estimate
@@ -323,10 +311,7 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         TraceOptions,
     };
     let components = mesh.connectivity().components();
-    let largest = components.largest().ok_or("the mesh has no faces")?;
-    let source = VertexId::new(
-        components.vertex_component.iter().position(|&c| c as usize == largest).ok_or("the mesh has no faces")?,
-    );
+    let source = largest_component_source(mesh)?;
     let heat = report.time("heat_precompute", || HeatGeodesics::new(mesh, &Default::default()))?;
     let solved = report.time("heat_solve", || heat.solve(&[source]))?;
     let far_field = solved.count(HeatStatus::FarField);
@@ -398,6 +383,15 @@ fn geodesic_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
 
 /// The accuracy the heat method is held to (largest and median error
 /// relative to the largest distance); a miss is a warning.
+/// The source of the geodesic distances of a report or a batch: the first
+/// vertex of the largest connected component.
+pub(crate) fn largest_component_source(mesh: &TriMesh) -> CliResult<VertexId> {
+    let components = mesh.connectivity().components();
+    let largest = components.largest().ok_or("the mesh has no faces")?;
+    let first = components.vertex_component.iter().position(|&c| c as usize == largest);
+    Ok(VertexId::new(first.ok_or("the mesh has no faces")?))
+}
+
 const HEAT_MAX_ERROR: f64 = 0.02;
 /// See [`HEAT_MAX_ERROR`].
 const HEAT_MEDIAN_ERROR: f64 = 0.005;

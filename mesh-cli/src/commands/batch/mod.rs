@@ -1,0 +1,284 @@
+//! `mesh batch`: one or more operations over every mesh of a dataset, on
+//! several threads, resumable.
+//!
+//! ```text
+//! mesh batch DIR_OR_GLOB... --do info,curvature,hks --out OUT [--jobs N]
+//! ```
+//!
+//! - Inputs: folders (their mesh files; sub-folders with `--recursive`),
+//!   patterns (`'data/**/*.ply'`, quoted so the shell leaves them alone) and
+//!   files; never anything under `OUT`.
+//! - `OUT/results.jsonl`: one JSON object per mesh, appended as each one
+//!   finishes: the input's path, size and time stamp, the configuration,
+//!   `status` (`ok` or `failed` with its `error`), vertex and face counts,
+//!   one section of summary figures per operation and the time of each.
+//! - `OUT/meshes/<id>.ply`: the mesh with every per-vertex field computed
+//!   (curvatures, distance, hks0...), binary PLY, written atomically before
+//!   its record.
+//! - A mesh that fails is recorded with its error and the run goes on; the
+//!   exit status is 1 when any mesh failed, after all were tried.
+//! - Running again skips the meshes whose record says `ok` for the same
+//!   file (path, size, modification time) and configuration, so an
+//!   interrupted run resumes where it stopped; `--redo` processes all.
+//! - Progress: a bar on a terminal, one line per mesh otherwise.
+
+mod inputs;
+mod journal;
+mod ops;
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use rayon::prelude::*;
+use serde_json::{json, Value};
+
+use self::inputs::Input;
+use self::journal::{Journal, Stamp};
+pub use self::ops::Op;
+use self::ops::Params;
+use crate::choice::choice;
+use crate::output::{binary_ply, check_output, print_json, write_mesh, CliResult};
+
+/// Arguments of `mesh batch`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Folders, mesh files or quoted patterns (`*`, `?`, `[a-z]`, `**` for any depth of folders).
+    #[arg(value_name = "DIR_OR_GLOB", required = true)]
+    inputs: Vec<PathBuf>,
+    /// Operations, comma-separated.
+    #[arg(long = "do", value_name = "OPS", value_delimiter = ',', default_value = "info",
+          value_parser = choice::<Op>(Op::ALL.map(Op::name)))]
+    ops: Vec<Op>,
+    /// Output folder (created if needed): results.jsonl and meshes/.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Meshes processed at once (default: the number of cores). Each mesh's
+    /// own loops share the same threads.
+    #[arg(long, value_name = "N")]
+    jobs: Option<usize>,
+    /// Also the mesh files of sub-folders of a folder given.
+    #[arg(long)]
+    recursive: bool,
+    /// Eigenpairs for `eigen` and `hks`.
+    #[arg(long, default_value_t = 30)]
+    k: usize,
+    /// Times of the heat kernel signature.
+    #[arg(long, default_value_t = 8)]
+    times: usize,
+    /// Write only the journal, no per-mesh PLY files.
+    #[arg(long)]
+    no_fields: bool,
+    /// Process every mesh again, even those the journal records as done.
+    #[arg(long)]
+    redo: bool,
+    /// Print the run's summary as one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The folder of per-mesh files inside the output folder.
+const MESHES: &str = "meshes";
+
+/// Runs `mesh batch`.
+pub fn run(args: &Args) -> CliResult<()> {
+    let start = Instant::now();
+    let mut ops = args.ops.clone();
+    ops.sort();
+    ops.dedup();
+    if args.k == 0 || args.times == 0 {
+        return Err("--k and --times must be at least 1".into());
+    }
+    let jobs = match args.jobs {
+        Some(0) => return Err("--jobs must be at least 1".into()),
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    std::fs::create_dir_all(args.out.join(MESHES))
+        .map_err(|e| format!("cannot create {}: {e}", args.out.join(MESHES).display()))?;
+    let all = inputs::collect(&args.inputs, args.recursive, &args.out)?;
+    let config = config_string(&ops, args);
+    let previous = if args.redo { journal::Previous::default() } else { journal::read(&args.out)? };
+    let mut todo = Vec::new();
+    for input in &all {
+        let stamp = Stamp::of(&input.id, &input.path, &config)?;
+        if !previous.done.contains_key(&stamp) {
+            todo.push((input, stamp));
+        }
+    }
+    // Largest files first: the long meshes start early and the short ones fill in.
+    todo.sort_by(|a, b| b.1.size.cmp(&a.1.size).then_with(|| a.0.id.cmp(&b.0.id)));
+    let skipped = all.len() - todo.len();
+    let journal = Journal::open(&args.out)?;
+    let progress = Progress::new(todo.len());
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build()?;
+    let params = Params { k: args.k, times: args.times };
+    let records: Vec<Value> = pool.install(|| {
+        todo.par_iter()
+            .with_max_len(1)
+            .map(|(input, stamp)| {
+                let mut record = process(input, stamp, &ops, params, args);
+                if let Err(e) = journal.append(&record) {
+                    // Not recorded: the next run does it again; this one fails.
+                    record["status"] = json!("failed");
+                    record["error"] = json!(format!("the record could not be written: {e}"));
+                }
+                progress.finished(&input.id, &record);
+                record
+            })
+            .collect()
+    });
+    progress.finish();
+    let ok = records.iter().filter(|r| r["status"] == "ok").count();
+    let failed = records.len() - ok;
+    let wall_s = start.elapsed().as_secs_f64();
+    let vertices: u64 = records.iter().filter_map(|r| r["vertices"].as_u64()).sum();
+    let summary = json!({
+        "inputs": all.len(),
+        "skipped_as_done": skipped,
+        "processed": records.len(),
+        "ok": ok,
+        "failed": failed,
+        "jobs": jobs,
+        "operations": ops.iter().map(|o| o.name()).collect::<Vec<_>>(),
+        "wall_s": wall_s,
+        "meshes_per_s": records.len() as f64 / wall_s,
+        "vertices_per_s": vertices as f64 / wall_s,
+        "journal": args.out.join(journal::FILE_NAME).display().to_string(),
+        "unreadable_journal_lines": previous.unreadable_lines,
+    });
+    if args.json {
+        print_json(&summary)?;
+    } else {
+        println!(
+            "{} meshes: {ok} ok, {failed} failed, {skipped} already done; {wall_s:.1} s, {:.1} meshes/s, {:.0} vertices/s \
+             ({} threads); records in {}",
+            all.len(),
+            records.len() as f64 / wall_s,
+            vertices as f64 / wall_s,
+            jobs,
+            args.out.join(journal::FILE_NAME).display()
+        );
+    }
+    if failed > 0 {
+        return Err(format!(
+            "{failed} of {} meshes failed (their records in {} have \"status\": \"failed\" and the error)",
+            records.len(),
+            args.out.join(journal::FILE_NAME).display()
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// The configuration a record was made under: operations and parameters.
+fn config_string(ops: &[Op], args: &Args) -> String {
+    let names: Vec<&str> = ops.iter().map(|o| o.name()).collect();
+    format!("do={};k={};times={};fields={}", names.join(","), args.k, args.times, !args.no_fields)
+}
+
+/// Processes one mesh into its record; never fails and never unwinds: an
+/// error (or a panic, which would be a bug) becomes a `failed` record.
+fn process(input: &Input, stamp: &Stamp, ops: &[Op], params: Params, args: &Args) -> Value {
+    let start = Instant::now();
+    let result = catch_unwind(AssertUnwindSafe(|| process_mesh(input, ops, params, args)))
+        .unwrap_or_else(|panic| Err(format!("internal error: {}", panic_text(&panic)).into()));
+    let mut record = stamp.to_json();
+    match result {
+        Ok(fields) => {
+            record.insert("status".into(), json!("ok"));
+            record.extend(fields);
+        }
+        Err(e) => {
+            record.insert("status".into(), json!("failed"));
+            record.insert("error".into(), json!(e.to_string()));
+        }
+    }
+    record.insert("total_ms".into(), json!(start.elapsed().as_secs_f64() * 1e3));
+    Value::Object(record)
+}
+
+fn panic_text(panic: &Box<dyn std::any::Any + Send>) -> String {
+    panic
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| panic.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+        .unwrap_or_else(|| "a panic".to_owned())
+}
+
+fn process_mesh(input: &Input, ops: &[Op], params: Params, args: &Args) -> CliResult<serde_json::Map<String, Value>> {
+    let read_start = Instant::now();
+    let data = mesh_io::read(&input.path).map_err(crate::errors::io)?;
+    let read_ms = read_start.elapsed().as_secs_f64() * 1e3;
+    let mesh = &data.mesh;
+    let mut outcome = ops::run(mesh, ops, params)?;
+    outcome.timings_ms.insert("read".into(), json!(read_ms));
+    let mut record = serde_json::Map::new();
+    record.insert("vertices".into(), json!(mesh.vertex_count()));
+    record.insert("faces".into(), json!(mesh.face_count()));
+    if !data.report.is_clean() {
+        record.insert("read_changed".into(), json!(data.report.to_string()));
+    }
+    if !args.no_fields && !outcome.fields.is_empty() {
+        let name = format!("{MESHES}/{}.ply", input.id);
+        let path = args.out.join(&name);
+        check_output(&path, Some(&input.path), false)?;
+        let mut view = mesh_io::MeshView::new(mesh);
+        for (field, values) in &outcome.fields {
+            view = view.with_scalar(field, values);
+        }
+        write_mesh(&path, view, &binary_ply())?;
+        record.insert("output".into(), json!(name));
+    }
+    record.insert("sections".into(), Value::Object(outcome.sections));
+    record.insert("timings_ms".into(), Value::Object(outcome.timings_ms));
+    Ok(record)
+}
+
+/// Progress on standard error: a bar on a terminal, a line per mesh
+/// otherwise (logs, CI).
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    done: AtomicUsize,
+    total: usize,
+}
+
+impl Progress {
+    fn new(total: usize) -> Self {
+        use std::io::IsTerminal;
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = indicatif::ProgressBar::new(total as u64);
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} meshes, {elapsed} elapsed, {eta} left {msg}",
+            ) {
+                bar.set_style(style);
+            }
+            bar
+        });
+        Self { bar, done: AtomicUsize::new(0), total }
+    }
+
+    fn finished(&self, id: &str, record: &Value) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        let status = match &record["error"] {
+            Value::String(e) => format!("failed: {e}"),
+            _ => format!("ok, {:.0} ms", record["total_ms"].as_f64().unwrap_or(0.0)),
+        };
+        match &self.bar {
+            Some(bar) => {
+                if record["status"] != "ok" {
+                    bar.println(format!("{id}: {status}"));
+                }
+                bar.inc(1);
+            }
+            None => eprintln!("[{done}/{}] {id}: {status}", self.total),
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}

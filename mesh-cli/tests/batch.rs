@@ -1,0 +1,133 @@
+//! End-to-end tests of `mesh batch`: records, failures, resuming, patterns.
+
+use std::path::Path;
+use std::process::Command;
+
+use serde_json::Value;
+
+fn mesh(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_mesh")).args(args).output().expect("the mesh binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn records(out: &Path) -> Vec<Value> {
+    let text = std::fs::read_to_string(out.join("results.jsonl")).unwrap();
+    text.lines().map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}"))).collect()
+}
+
+/// A folder with three shapes (one in a sub-folder), a file that is not a
+/// mesh, and a PLY cut short.
+fn dataset(dir: &Path) {
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    for (shape, res, file) in [("icosphere", "2", "a.off"), ("torus", "8", "b.obj"), ("cube", "3", "sub/c.ply")] {
+        let path = dir.join(file);
+        let (code, _, err) = mesh(&["generate", "--shape", shape, "--res", res, path.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+    }
+    std::fs::write(dir.join("notes.txt"), "not a mesh").unwrap();
+    let good = std::fs::read(dir.join("sub/c.ply")).unwrap();
+    std::fs::write(dir.join("broken.ply"), &good[..good.len() / 2]).unwrap();
+}
+
+#[test]
+fn a_folder_is_processed_failures_recorded_and_a_rerun_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    dataset(&data);
+    // The output folder inside the input folder: never read as input.
+    let out = data.join("out");
+    let args = |extra: &[&str]| {
+        let mut a = vec!["batch", data.to_str().unwrap(), "--recursive", "--do", "info,curvature,hks", "--k", "8"];
+        a.extend_from_slice(&["--out", out.to_str().unwrap(), "--jobs", "2", "--json"]);
+        a.extend_from_slice(extra);
+        a.into_iter().map(str::to_owned).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        mesh(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let (code, stdout, stderr) = run(&[]);
+    assert_eq!(code, 1, "one mesh fails, so the run does: {stderr}");
+    assert!(stderr.contains("1 of 4 meshes failed"), "{stderr}");
+    let summary: Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(
+        (summary["inputs"].as_u64(), summary["ok"].as_u64(), summary["failed"].as_u64()),
+        (Some(4), Some(3), Some(1))
+    );
+    let first = records(&out);
+    assert_eq!(first.len(), 4);
+    let by_id = |id: &str| first.iter().find(|r| r["id"] == id).unwrap_or_else(|| panic!("{id}: {first:?}")).clone();
+    let broken = by_id("broken.ply");
+    assert_eq!(broken["status"], "failed");
+    assert!(broken["error"].as_str().unwrap().contains("broken.ply"), "the error names the file: {broken}");
+    let sphere = by_id("a.off");
+    assert_eq!(sphere["status"], "ok");
+    assert_eq!(sphere["vertices"], 162);
+    assert_eq!(sphere["sections"]["info"]["genus"], 0);
+    assert_eq!(sphere["sections"]["hks"]["times"].as_array().unwrap().len(), 8);
+    assert!(sphere["timings_ms"]["curvature"].as_f64().unwrap() >= 0.0);
+    // The per-mesh file holds the fields.
+    let ply = out.join(sphere["output"].as_str().unwrap());
+    let (code, info, err) = mesh(&["info", "--json", ply.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let info: Value = serde_json::from_str(&info).unwrap();
+    let names: Vec<&str> = info["attributes"].as_array().unwrap().iter().filter_map(|a| a["name"].as_str()).collect();
+    for field in ["gaussian", "mean", "k1", "k2", "hks0", "hks7"] {
+        assert!(names.contains(&field), "{field} not in {names:?}");
+    }
+    assert_eq!(by_id("sub__c.ply")["status"], "ok");
+
+    // Again: only the failed mesh is tried.
+    let (code, stdout, _) = run(&[]);
+    assert_eq!(code, 1);
+    let summary: Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!((summary["skipped_as_done"].as_u64(), summary["processed"].as_u64()), (Some(3), Some(1)));
+    // A changed input is done again, and a different configuration redoes all.
+    let (code, _, err) =
+        mesh(&["generate", "--shape", "icosphere", "--res", "3", data.join("a.off").to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    std::fs::remove_file(data.join("broken.ply")).unwrap();
+    let (code, stdout, stderr) = run(&[]);
+    assert_eq!(code, 0, "{stderr}");
+    let summary: Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!((summary["skipped_as_done"].as_u64(), summary["processed"].as_u64()), (Some(2), Some(1)));
+    let last = records(&out).pop().unwrap();
+    assert_eq!((last["id"].as_str(), last["vertices"].as_u64()), (Some("a.off"), Some(642)));
+    let (code, stdout, _) = run(&["--times", "4"]);
+    assert_eq!(code, 0);
+    let summary: Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(summary["processed"].as_u64(), Some(3));
+}
+
+#[test]
+fn patterns_select_files_and_bad_arguments_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    dataset(&data);
+    let out = dir.path().join("out");
+    let pattern = data.join("**").join("*.o*");
+    let (code, stdout, stderr) =
+        mesh(&["batch", pattern.to_str().unwrap(), "--out", out.to_str().unwrap(), "--no-fields", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let summary: Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(summary["inputs"].as_u64(), Some(2), "a.off and b.obj");
+    assert!(records(&out).iter().all(|r| r["output"].is_null()), "--no-fields writes no mesh file");
+    for (extra, expect) in [
+        (vec!["--do", "colour"], "invalid value 'colour'"),
+        (vec!["--jobs", "0"], "--jobs must be at least 1"),
+        (vec!["--k", "0"], "--k and --times must be at least 1"),
+    ] {
+        let mut args = vec!["batch", data.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        args.extend(extra);
+        let (code, _, stderr) = mesh(&args);
+        assert_ne!(code, 0);
+        assert!(stderr.contains(expect), "{args:?}: {stderr}");
+    }
+    let missing = data.join("*.xyz");
+    let (code, _, stderr) = mesh(&["batch", missing.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(code != 0 && stderr.contains("no mesh file"), "{stderr}");
+}
