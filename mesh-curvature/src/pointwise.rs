@@ -236,6 +236,35 @@ impl PointwiseCurvature {
         crate::gaussian::compensated_sum(self.gaussian_integrated.iter().chain(&self.geodesic_integrated).copied())
     }
 
+    /// Area-weighted histogram of the [`crate::shape_index`] over `bins`
+    /// equal bins of [-1, 1] (first bin: cups, middle: saddles, last: caps),
+    /// over the vertices that are not flagged and not planar (`k1 = k2 = 0`,
+    /// where the shape index is undefined), each weighted by its
+    /// [`Self::area`]. The fractions sum to 1 (all 0 when no vertex counts).
+    /// It does not depend on the unit of length, so it compares meshes of any
+    /// scale: a global shape descriptor for datasets. O(V).
+    pub fn shape_index_histogram(&self, bins: usize) -> Vec<f64> {
+        let mut out = vec![0.0; bins];
+        if bins == 0 {
+            return out;
+        }
+        let (k1, k2) = (&self.tensor.k1, &self.tensor.k2);
+        for i in 0..self.flag.len() {
+            let usable = self.flag[i].is_none() && k1[i].is_finite() && k2[i].is_finite() && self.area[i] > 0.0;
+            if !usable || (k1[i] == 0.0 && k2[i] == 0.0) {
+                continue;
+            }
+            let s = crate::shape_index(k1[i], k2[i]);
+            let bin = ((s + 1.0) * 0.5 * bins as f64).floor().clamp(0.0, (bins - 1) as f64);
+            out[bin as usize] += self.area[i];
+        }
+        let total: f64 = out.iter().sum();
+        if total > 0.0 {
+            out.iter_mut().for_each(|b| *b /= total);
+        }
+        out
+    }
+
     /// Counts of [`Self::flag`]. O(V).
     pub fn flag_counts(&self) -> FlagCounts {
         FlagCounts::of(&self.flag)

@@ -315,3 +315,44 @@ proptest! {
         assert_bounded(&m, &pointwise(&m));
     }
 }
+
+/// The shape-index histogram against the exact shape index: a sphere and
+/// a cylinder land in one bin each; on a torus (R = 2, r = 0.5) k1 = 1/r and
+/// k2 = cos(theta) / (R + r cos(theta)), the area element is
+/// r (R + r cos(theta)), and the exact histogram is a 1D integral over theta.
+#[test]
+fn shape_index_histogram_matches_the_exact_shape_index() {
+    let bins = 16;
+    let sphere = pointwise(&shapes::icosphere(4).unwrap()).shape_index_histogram(bins);
+    assert!(sphere[bins - 1] > 0.999, "a sphere is all cap: {sphere:?}");
+    // A cylinder: k1 = 1/r, k2 = 0, shape index 0.5 (ridge), on the edge of
+    // bins 11 and 12 of 16 (k2 is 0 up to rounding, of either sign).
+    let cylinder = pointwise(&shapes::cylinder(1.0, 2.0, 64, 32).unwrap()).shape_index_histogram(bins);
+    assert!(cylinder[11] + cylinder[12] > 0.999, "a cylinder is a ridge: {cylinder:?}");
+    let (big, r) = (2.0, 0.5);
+    let mut exact = vec![0.0; bins];
+    let steps = 200_000;
+    for i in 0..steps {
+        let theta = std::f64::consts::TAU * (i as f64 + 0.5) / steps as f64;
+        let s = shape_index(1.0 / r, theta.cos() / (big + r * theta.cos()));
+        let bin = (((s + 1.0) * 0.5 * bins as f64).floor() as usize).min(bins - 1);
+        exact[bin] += big + r * theta.cos();
+    }
+    let total: f64 = exact.iter().sum();
+    exact.iter_mut().for_each(|b| *b /= total);
+    // Each ring of vertices carries its bin's share whole: the distance
+    // shrinks with the ring spacing.
+    let l1 = |nu: usize, nv: usize| {
+        let h = pointwise(&shapes::torus(big, r, nu, nv).unwrap()).shape_index_histogram(bins);
+        (h.iter().zip(&exact).map(|(a, b)| (a - b).abs()).sum::<f64>(), h)
+    };
+    let (coarse, _) = l1(128, 32);
+    let (fine, torus) = l1(512, 128);
+    assert!(fine < 0.6 * coarse && fine < 0.04, "L1 distance {coarse} then {fine}: {torus:?} vs {exact:?}");
+    assert!((torus.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    // The unit of length changes nothing; no bins, no histogram.
+    let scaled = shapes::torus(big * 1e3, r * 1e3, 512, 128).unwrap();
+    let far = pointwise(&scaled).shape_index_histogram(bins);
+    assert!(far.iter().zip(&torus).all(|(a, b)| (a - b).abs() < 1e-9), "unit of length");
+    assert!(pointwise(&scaled).shape_index_histogram(0).is_empty());
+}

@@ -54,6 +54,7 @@ fn _meshkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(operators::gaussian_curvature, m)?)?;
     m.add_function(wrap_pyfunction!(operators::mean_curvature, m)?)?;
     m.add_function(wrap_pyfunction!(operators::principal_curvature, m)?)?;
+    m.add_function(wrap_pyfunction!(operators::shape_index_histogram, m)?)?;
     m.add_function(wrap_pyfunction!(topology::clean_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(topology::edges, m)?)?;
     m.add_function(wrap_pyfunction!(topology::boundary_loops, m)?)?;

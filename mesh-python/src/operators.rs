@@ -1,8 +1,8 @@
 //! Discrete operators, normals and curvature (mesh-kernel, mesh-curvature).
 
 use mesh_curvature::{
-    curvature_tensor, gaussian_curvature as gaussian, mean_curvature as mean, GaussianOptions, MeanOptions,
-    TensorMethod, TensorOptions,
+    curvature_tensor, gaussian_curvature as gaussian, mean_curvature as mean, pointwise_curvature, GaussianOptions,
+    MeanOptions, PointwiseOptions, TensorMethod, TensorOptions,
 };
 use mesh_kernel::geometry::{self, NormalWeighting};
 use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation, MassKind};
@@ -210,4 +210,22 @@ pub fn principal_curvature<'py>(
         Ok(curvature_tensor(&arrays.mesh()?, &TensorOptions { method, ..Default::default() })?)
     })?;
     Ok((vec1(py, t.k1), vec1(py, t.k2), points(py, t.d1)?, points(py, t.d2)?))
+}
+
+/// Area-weighted histogram of the shape index over `bins` bins of [-1, 1],
+/// from the pointwise curvature (quartic fit), flagged and planar vertices
+/// left out: `PointwiseCurvature::shape_index_histogram`, as `mesh batch`.
+#[pyfunction]
+#[pyo3(signature = (v, f, bins=16))]
+pub fn shape_index_histogram<'py>(
+    py: Python<'py>,
+    v: PyReadonlyArray2<'py, f64>,
+    f: Faces<'py>,
+    bins: usize,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let arrays = Arrays::new(&v, &f)?;
+    let h = run(py, move || -> Fallible<_> {
+        Ok(pointwise_curvature(&arrays.mesh()?, &PointwiseOptions::default())?.shape_index_histogram(bins))
+    })?;
+    Ok(vec1(py, h))
 }

@@ -4,8 +4,8 @@
 use glam::DVec3;
 use mesh_kernel::TriMesh;
 use mesh_spectral::{
-    compress, filter, heat_kernel_signature as hks, hks_times, ComponentSelection, EigenOptions, Eigenpairs,
-    HarmonicsOptions, ManifoldHarmonics, SpectralCompressionPoint, Transfer,
+    compress, filter, heat_kernel_signature as hks, heat_trace, hks_times, ComponentSelection, EigenOptions,
+    Eigenpairs, HarmonicsOptions, ManifoldHarmonics, SpectralCompressionPoint, Transfer,
 };
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -212,6 +212,27 @@ impl Harmonics {
         count: usize,
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
         hks_of(py, self.mh.eigenpairs(), times, count)
+    }
+
+    /// Heat trace `sum_i exp(-lambda_i t)` (the area-weighted sum of the
+    /// signature) at `times` or at the `count` times of the signature:
+    /// `(trace (T,), times (T,))`.
+    #[pyo3(signature = (times=None, count=5))]
+    fn heat_trace<'py>(
+        &self,
+        py: Python<'py>,
+        times: Option<Vec<f64>>,
+        count: usize,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+        let pairs = self.mh.eigenpairs();
+        let (trace, times) = run(py, || {
+            let times = match times {
+                Some(t) => t,
+                None => hks_times(pairs, count)?,
+            };
+            Ok((heat_trace(pairs, &times)?, times))
+        })?;
+        Ok((vec1(py, trace), vec1(py, times)))
     }
 }
 

@@ -20,9 +20,7 @@ use crate::error::{Result, SpectralError};
 /// # Errors
 /// `SpectralError::InvalidOption` (`times`) for a time that is negative or not finite.
 pub fn heat_kernel_signature(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<Vec<f64>>> {
-    if let Some(bad) = times.iter().find(|t| !(t.is_finite() && **t >= 0.0)) {
-        return Err(SpectralError::InvalidOption { name: "times", reason: format!("{bad} is not a finite time >= 0") });
-    }
+    check_times(times)?;
     let n = pairs.vertex_count();
     Ok(times
         .iter()
@@ -39,6 +37,30 @@ pub fn heat_kernel_signature(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<Ve
             h
         })
         .collect())
+}
+
+/// The heat trace `Z(t) = sum_i exp(-lambda_i t)` over the pairs, for every
+/// time: the total heat left at time `t`, which is the area-weighted sum of
+/// [`heat_kernel_signature`] over the vertices (the eigenvectors are
+/// M-orthonormal), so `Z(t) / area` is the signature's mean. A global,
+/// isometry-invariant descriptor of the shape; at the times of [`hks_times`]
+/// (inversely proportional to the eigenvalues) it does not depend on the
+/// unit of length. O(k |times|).
+///
+/// # Errors
+/// `SpectralError::InvalidOption` (`times`) for a time that is negative or not finite.
+pub fn heat_trace(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<f64>> {
+    check_times(times)?;
+    Ok(times.iter().map(|&t| pairs.values.iter().map(|&lambda| (-lambda.max(0.0) * t).exp()).sum()).collect())
+}
+
+fn check_times(times: &[f64]) -> Result<()> {
+    match times.iter().find(|t| !(t.is_finite() && **t >= 0.0)) {
+        Some(bad) => {
+            Err(SpectralError::InvalidOption { name: "times", reason: format!("{bad} is not a finite time >= 0") })
+        }
+        None => Ok(()),
+    }
 }
 
 /// `count` times sampled logarithmically over the range where the

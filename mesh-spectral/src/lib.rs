@@ -11,7 +11,7 @@
 //! | [`harmonics`] | [`ManifoldHarmonics`]: basis, forward `Phi^T M f` and inverse transforms of fields and geometry | Vallet and Levy 2008 |
 //! | [`filter`](mod@filter) | [`filter()`]: transfer functions over frequencies (low-pass, band exaggeration) | Vallet and Levy 2008 |
 //! | [`compress`](mod@compress) | [`compress()`], [`compression_curve`]: keep k coefficients, error vs k | Karni and Gotsman 2000 |
-//! | [`hks`] | [`heat_kernel_signature`] | Sun, Ovsjanikov and Guibas 2009 |
+//! | [`hks`] | [`heat_kernel_signature`], [`heat_trace`] (its area-weighted sum, a global descriptor) | Sun, Ovsjanikov and Guibas 2009 |
 //!
 //! ```
 //! use mesh_kernel::{operators, shapes};
@@ -48,7 +48,7 @@ pub use eigen::{eigenpairs, ComponentSelection, EigenOptions, EigenSolver, Eigen
 pub use error::SpectralError;
 pub use filter::{filter, filter_mesh, filter_with, Transfer};
 pub use harmonics::{HarmonicsOptions, ManifoldHarmonics};
-pub use hks::{heat_kernel_signature, hks_times};
+pub use hks::{heat_kernel_signature, heat_trace, hks_times};
 /// The choices of Laplacian and mass, shared with every crate of the workspace.
 pub use mesh_kernel::operators::{LaplacianKind, MassKind};
 pub use operators::{laplace_beltrami, pencil, OperatorInfo, Pencil};

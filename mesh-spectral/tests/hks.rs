@@ -3,7 +3,7 @@
 mod common;
 
 use mesh_kernel::shapes;
-use mesh_spectral::{heat_kernel_signature, hks_times, HarmonicsOptions, ManifoldHarmonics};
+use mesh_spectral::{heat_kernel_signature, heat_trace, hks_times, HarmonicsOptions, ManifoldHarmonics};
 use std::f64::consts::PI;
 
 /// On the unit sphere HKS(x, t) = sum_l (2 l + 1) / (4 pi) exp(-l (l + 1) t)
@@ -48,4 +48,23 @@ fn default_times_span_the_spectrum() {
     assert!(times.windows(2).all(|w| w[0] < w[1]));
     assert!(hks_times(mh.eigenpairs(), 0).is_err());
     assert!(heat_kernel_signature(mh.eigenpairs(), &[-1.0]).is_err());
+}
+
+/// The heat trace is the area-weighted sum of the signature, and on the unit
+/// sphere it is `sum_l (2 l + 1) exp(-l (l + 1) t)` (4 pi times the
+/// signature's closed form), truncated to the 36 pairs of l <= 5.
+#[test]
+fn heat_trace_is_the_integral_of_the_signature() {
+    let mesh = shapes::icosphere(4).unwrap();
+    let mh = ManifoldHarmonics::new(&mesh, 36, &HarmonicsOptions::default()).unwrap();
+    let times = [0.05, 0.3, 1.2];
+    let trace = heat_trace(mh.eigenpairs(), &times).unwrap();
+    let hks = heat_kernel_signature(mh.eigenpairs(), &times).unwrap();
+    for ((t, z), h) in times.iter().zip(&trace).zip(&hks) {
+        let integral: f64 = h.iter().zip(mh.mass()).map(|(x, m)| x * m).sum();
+        assert!((integral - z).abs() < 1e-9 * z, "t = {t}: {integral} vs {z}");
+        let truth: f64 = (0..=5).map(|l| (2 * l + 1) as f64 * (-((l * (l + 1)) as f64) * t).exp()).sum();
+        assert!((z - truth).abs() < 1e-2 * truth, "t = {t}: {z} vs {truth}");
+    }
+    assert!(heat_trace(mh.eigenpairs(), &[f64::NAN]).is_err());
 }

@@ -370,6 +370,18 @@ def principal_curvature(V, F, method="fit"):
     return _native.principal_curvature(V, F, method)
 
 
+def shape_index_histogram(V, F, bins=16):
+    """Area-weighted histogram (bins,) of Koenderink and van Doorn's shape
+    index over ``bins`` equal bins of [-1, 1] (first: cups, middle: saddles,
+    last: caps), from the pointwise curvature (quartic fit), vertices whose
+    curvature is flagged untrustworthy or planar left out; sums to 1 (all
+    zeros when no vertex counts). Independent of the unit of length: a global
+    descriptor that compares meshes of any scale (as ``mesh batch --do
+    curvature``)."""
+    V, F = _mesh(V, F)
+    return _native.shape_index_histogram(V, F, int(bins))
+
+
 # --------------------------------------------------------------------------
 # Geodesics
 
@@ -606,6 +618,16 @@ class Harmonics:
         t = None if times is None else [float(x) for x in np.atleast_1d(times)]
         return self._native.heat_kernel_signature(t, int(count))
 
+    def heat_trace(self, times=None, count=5):
+        """``(trace (T,), times (T,))``: ``sum_i exp(-lambda_i t)`` over the
+        basis, the area-weighted sum of the heat kernel signature (so
+        ``trace / area`` is its mean), at ``times`` or at the ``count`` times
+        of :meth:`heat_kernel_signature`. At those default times (inversely
+        proportional to the eigenvalues) it does not depend on the unit of
+        length."""
+        t = None if times is None else [float(x) for x in np.atleast_1d(times)]
+        return self._native.heat_trace(t, int(count))
+
     def __getstate__(self):
         return self._args
 
@@ -743,7 +765,7 @@ __all__ = [
     "clean", "edges", "boundary_loops", "connected_components",
     "cotan_laplacian", "uniform_laplacian", "adjacency_matrix", "gradient", "divergence", "mass_matrix",
     "lumped_mass", "intrinsic_delaunay_laplacian", "vertex_normals", "face_normals", "face_areas",
-    "gaussian_curvature", "mean_curvature", "principal_curvature",
+    "gaussian_curvature", "mean_curvature", "principal_curvature", "shape_index_histogram",
     "HeatSolver", "heat_distance", "FastMarchingSolver", "fmm_distance", "exact_distance", "dijkstra",
     "trace_path", "farthest_point_sampling",
     "PARAMETERIZATION_METHODS", "parameterize", "parameterize_cut",

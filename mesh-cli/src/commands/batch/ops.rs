@@ -4,7 +4,7 @@
 
 use std::time::Instant;
 
-use mesh_kernel::{operators, MeshError, TriMesh};
+use mesh_kernel::{MeshError, TriMesh};
 use serde_json::{json, Map, Value};
 
 use crate::output::{stats, CliResult};
@@ -22,8 +22,8 @@ pub enum Op {
     Geodesic,
     /// The `k` smallest Laplace-Beltrami eigenvalues.
     Eigen,
-    /// Heat kernel signature at log-spaced times, with its area-weighted
-    /// mean per time (a global descriptor).
+    /// Heat kernel signature at log-spaced times, with the heat trace
+    /// (its area-weighted sum, a global descriptor) at those times.
     Hks,
 }
 
@@ -111,7 +111,6 @@ pub fn run(mesh: &TriMesh, ops: &[Op], params: Params) -> CliResult<Outcome> {
 fn curvature(mesh: &TriMesh, out: &mut Outcome) -> CliResult<Value> {
     use mesh_curvature::{flag_code, pointwise_curvature, PointwiseOptions};
     let c = out.time("curvature", || pointwise_curvature(mesh, &PointwiseOptions::default()))?;
-    let mass = operators::lumped_mass(mesh, operators::MassKind::MixedVoronoi);
     let valid = |i: usize| c.flag[i].is_none();
     let section = json!({
         "gaussian": stats(&c.gaussian, valid),
@@ -120,7 +119,7 @@ fn curvature(mesh: &TriMesh, out: &mut Outcome) -> CliResult<Value> {
         "k2": stats(&c.tensor.k2, valid),
         "flagged": c.flag_counts().total(),
         "gauss_bonnet_total": c.gauss_bonnet_total(),
-        "shape_index_histogram": shape_index_histogram(&c.tensor.k1, &c.tensor.k2, &mass, valid),
+        "shape_index_histogram": c.shape_index_histogram(SHAPE_INDEX_BINS),
     });
     out.fields.push(("curvature_flag".into(), c.flag.iter().map(|f| f64::from(flag_code(*f))).collect()));
     out.fields.push(("gaussian".into(), c.gaussian));
@@ -128,32 +127,6 @@ fn curvature(mesh: &TriMesh, out: &mut Outcome) -> CliResult<Value> {
     out.fields.push(("k1".into(), c.tensor.k1));
     out.fields.push(("k2".into(), c.tensor.k2));
     Ok(section)
-}
-
-/// Area-weighted histogram of Koenderink and van Doorn's (1992) shape index
-/// `s = (2 / pi) atan((k1 + k2) / (k1 - k2))` (k1 >= k2) over
-/// [`SHAPE_INDEX_BINS`] bins of [-1, 1]: -1 cup, 0 saddle, 1 cap. It does not
-/// depend on the unit of length, so meshes of any scale compare. Flat
-/// vertices (k1 = k2 = 0) have no shape index and are left out; the
-/// fractions sum to 1 over the others (all zero when there are none).
-pub fn shape_index_histogram(k1: &[f64], k2: &[f64], mass: &[f64], keep: impl Fn(usize) -> bool) -> Vec<f64> {
-    let mut bins = vec![0.0; SHAPE_INDEX_BINS];
-    for i in 0..k1.len().min(k2.len()).min(mass.len()) {
-        let (hi, lo) = if k1[i] >= k2[i] { (k1[i], k2[i]) } else { (k2[i], k1[i]) };
-        let usable = keep(i) && hi.is_finite() && lo.is_finite() && mass[i].is_finite();
-        if !usable || (hi == 0.0 && lo == 0.0) {
-            continue;
-        }
-        let s = std::f64::consts::FRAC_2_PI * (hi + lo).atan2(hi - lo);
-        // atan2 of (sum, difference >= 0) lies in [-pi/2, pi/2].
-        let b = (((s + 1.0) * 0.5) * SHAPE_INDEX_BINS as f64).floor().clamp(0.0, (SHAPE_INDEX_BINS - 1) as f64);
-        bins[b as usize] += mass[i];
-    }
-    let total: f64 = bins.iter().sum();
-    if total > 0.0 {
-        bins.iter_mut().for_each(|b| *b /= total);
-    }
-    bins
 }
 
 fn geodesic(mesh: &TriMesh, out: &mut Outcome) -> CliResult<Value> {
@@ -175,19 +148,10 @@ fn geodesic(mesh: &TriMesh, out: &mut Outcome) -> CliResult<Value> {
 }
 
 fn hks(mh: &mesh_spectral::ManifoldHarmonics, count: usize, out: &mut Outcome) -> CliResult<Value> {
-    use mesh_spectral::{heat_kernel_signature, hks_times};
+    use mesh_spectral::{heat_kernel_signature, heat_trace, hks_times};
     let times = hks_times(mh.eigenpairs(), count)?;
     let hks = out.time("hks", || heat_kernel_signature(mh.eigenpairs(), &times))?;
-    let mass = mh.mass();
-    let total: f64 = mass.iter().sum();
-    let means: Vec<Option<f64>> = hks
-        .iter()
-        .map(|h| {
-            let s: f64 = h.iter().zip(mass).map(|(x, m)| x * m).sum();
-            crate::output::finite(s / total)
-        })
-        .collect();
-    let section = json!({ "k": mh.len(), "times": times, "area_weighted_mean": means });
+    let section = json!({ "k": mh.len(), "times": times, "heat_trace": heat_trace(mh.eigenpairs(), &times)? });
     for (i, h) in hks.into_iter().enumerate() {
         out.fields.push((format!("hks{i}"), h));
     }
@@ -198,21 +162,6 @@ fn hks(mh: &mesh_spectral::ManifoldHarmonics, count: usize, out: &mut Outcome) -
 mod tests {
     use super::*;
     use mesh_kernel::shapes;
-
-    #[test]
-    fn shape_index_of_caps_cups_and_saddles() {
-        let keep = |_| true;
-        let h = shape_index_histogram(&[1.0, -1.0, 1.0, 0.0], &[1.0, -1.0, -1.0, 0.0], &[1.0, 2.0, 1.0, 5.0], keep);
-        assert_eq!(h.len(), SHAPE_INDEX_BINS);
-        assert!((h[SHAPE_INDEX_BINS - 1] - 0.25).abs() < 1e-15, "cap (s = 1) in the last bin: {h:?}");
-        assert!((h[0] - 0.5).abs() < 1e-15, "cup (s = -1) in the first bin, twice the area");
-        assert!((h[SHAPE_INDEX_BINS / 2] - 0.25).abs() < 1e-15, "saddle (s = 0) in the middle");
-        // The flat vertex is left out; the order of k1, k2 does not matter.
-        assert_eq!(
-            h,
-            shape_index_histogram(&[1.0, -1.0, -1.0, 0.0], &[1.0, -1.0, 1.0, 0.0], &[1.0, 2.0, 1.0, 5.0], keep)
-        );
-    }
 
     #[test]
     fn every_operation_on_a_sphere() {
@@ -231,10 +180,10 @@ mod tests {
         // The heat method on 642 vertices: within 2% of pi (1.6% here).
         assert!((max - std::f64::consts::PI).abs() < 0.02 * std::f64::consts::PI, "{max}");
         assert_eq!(s["hks"]["times"].as_array().unwrap().len(), 4);
-        // On the sphere the heat kernel signature is the same everywhere:
-        // its area-weighted mean at the shortest time is 1 / area plus the
-        // sum of the other modes, positive.
-        assert!(s["hks"]["area_weighted_mean"][0].as_f64().unwrap() > 1.0 / (4.0 * std::f64::consts::PI));
+        // The heat trace: 1 for the constant plus a positive term per pair,
+        // decreasing in time.
+        let trace: Vec<f64> = s["hks"]["heat_trace"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        assert!(trace.windows(2).all(|w| w[0] > w[1]) && trace[3] > 1.0 && trace[0] < 9.0, "{trace:?}");
         let fields: Vec<&str> = out.fields.iter().map(|(n, _)| n.as_str()).collect();
         assert!(fields.contains(&"distance") && fields.contains(&"k1") && fields.contains(&"hks3"));
         assert!(out.fields.iter().all(|(_, v)| v.len() == mesh.vertex_count()));
