@@ -238,11 +238,16 @@ impl PointwiseCurvature {
 
     /// Area-weighted histogram of the [`crate::shape_index`] over `bins`
     /// equal bins of [-1, 1] (first bin: cups, middle: saddles, last: caps),
-    /// over the vertices that are not flagged and not planar (`k1 = k2 = 0`,
-    /// where the shape index is undefined), each weighted by its
-    /// [`Self::area`]. The fractions sum to 1 (all 0 when no vertex counts).
-    /// It does not depend on the unit of length, so it compares meshes of any
-    /// scale: a global shape descriptor for datasets. O(V).
+    /// over the vertices that are not flagged and not planar, each weighted
+    /// by its [`Self::area`]. A vertex is planar when its curvedness times
+    /// its sampling [`Self::length`] is below [`PLANAR_CURVEDNESS`]: there
+    /// the shape index is undefined, and the principal curvatures of a flat
+    /// region are rounding noise whose shape index is anything (a grid or
+    /// the flat faces of a CAD part would otherwise fill random bins, and
+    /// differently after a rotation). The fractions sum to 1 (all 0 when no
+    /// vertex counts). It does not depend on the unit of length or on rigid
+    /// motions, so it compares meshes of any scale: a global shape
+    /// descriptor for datasets. O(V).
     pub fn shape_index_histogram(&self, bins: usize) -> Vec<f64> {
         let mut out = vec![0.0; bins];
         if bins == 0 {
@@ -251,7 +256,7 @@ impl PointwiseCurvature {
         let (k1, k2) = (&self.tensor.k1, &self.tensor.k2);
         for i in 0..self.flag.len() {
             let usable = self.flag[i].is_none() && k1[i].is_finite() && k2[i].is_finite() && self.area[i] > 0.0;
-            if !usable || (k1[i] == 0.0 && k2[i] == 0.0) {
+            if !usable || crate::curvedness(k1[i], k2[i]) * self.length[i] < PLANAR_CURVEDNESS {
                 continue;
             }
             let s = crate::shape_index(k1[i], k2[i]);
@@ -275,6 +280,19 @@ impl PointwiseCurvature {
         FlagCounts::of(&self.flag_discrete)
     }
 }
+
+/// Curvedness times sampling length below which a vertex counts as planar
+/// in [`PointwiseCurvature::shape_index_histogram`]: a radius of curvature a
+/// million sampling lengths long. Fits on flat regions give curvatures of
+/// order 1e-13 / length from rounding in double precision; the least
+/// curvature a mesh can resolve is many orders above this. Coordinates
+/// rounded to single precision (STL, glTF, float PLY) or to 6-7 significant
+/// digits (most text files) carry position noise `d` a million times larger,
+/// and flat regions then show curvedness times length of order `d / length`
+/// (1e-6 to 1e-4 on the meshes of `cargo xtask dataset`): above this floor,
+/// so their flat regions spread over the bins. Telling that noise from
+/// curvature needs the fit's residual, which the histogram does not use yet.
+pub const PLANAR_CURVEDNESS: f64 = 1e-6;
 
 /// Pointwise Gaussian and mean curvature of every vertex from the curvature
 /// tensor (eq. 2.19-2.20), the discrete values (eq. 2.25, 2.26) beside them,
