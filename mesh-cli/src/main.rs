@@ -35,6 +35,8 @@ enum Command {
     Render(commands::render::Args),
     /// Runs every analysis on a mesh and writes a JSON report and viewer-ready files.
     Report(commands::report::Args),
+    /// Draws the chapter's figures (2.4-2.14) with the workspace's algorithms, as PNGs with caption files.
+    Figures(commands::figures::Args),
     /// Gaussian, mean and principal curvatures and directions, to a PLY file.
     Curvature(commands::curvature::Args),
     /// Flattens a mesh onto the plane (Tutte, mean-value, harmonic, authalic, intrinsic, LSCM, ARAP), to an OBJ with UVs.
@@ -68,7 +70,7 @@ impl Command {
             Command::Spectral(a) => a.input_file(),
             Command::Subdivide(a) => a.input_file(),
             Command::Wavelet(a) => a.input_file(),
-            Command::Generate(_) | Command::Nurbs(_) | Command::Batch(_) => None,
+            Command::Generate(_) | Command::Nurbs(_) | Command::Batch(_) | Command::Figures(_) => None,
         }
     }
 
@@ -116,6 +118,7 @@ fn main() {
         Command::Generate(args) => commands::generate::run(args),
         Command::Render(args) => commands::render::run(args),
         Command::Report(args) => commands::report::run(args),
+        Command::Figures(args) => commands::figures::run(args),
         Command::Curvature(args) => commands::curvature::run(args),
         Command::Param(args) => commands::param::run(args),
         Command::Geodesic(args) => commands::geodesic::run(args),
