@@ -35,6 +35,8 @@
 //! checked and refused with a [`RenderError`]; non-finite geometry is left
 //! out of the picture.
 #![deny(missing_docs)]
+// `!(x > 0.0)` is the NaN-rejecting test used on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod camera;
 pub mod color;
@@ -61,3 +63,8 @@ pub use scene::{LineStyle, Paint, Scene, Shading};
 pub use texture::{corner_uvs, normalize_uvs, Texture};
 
 pub use glam;
+
+/// The README's example, compiled and run as a doc-test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -426,6 +426,19 @@ mod tests {
     }
 
     #[test]
+    fn a_convex_sphere_renders_red_in_the_curvature_classes() {
+        // Outward normals: H = 1, K = 1 everywhere, convex.
+        let m = mesh_kernel::shapes::icosphere(3).unwrap();
+        let (h, k) = (vec![1.0; m.vertex_count()], vec![1.0; m.vertex_count()]);
+        let classes = crate::color::CurvatureClasses::fit(&h, &k);
+        let mut scene = Scene::new();
+        scene.surface(&m, Paint::Vertex(classes.colors(&h, &k)), Shading::Smooth).unwrap();
+        let im = scene.render(&View::default(), 64, 64, [0; 4]).unwrap();
+        let c = im.pixel(32, 32).unwrap();
+        assert!(c[0] > 120 && c[1] < 40 && c[2] < 40, "{c:?}");
+    }
+
+    #[test]
     fn bad_inputs_are_errors() {
         let m = mesh_kernel::shapes::icosphere(1).unwrap();
         let mut scene = Scene::new();

@@ -11,6 +11,8 @@
 //!   scaled, in every format, one in 50 broken on purpose).
 //! - `cargo xtask render [--out DIR]`: a gallery of PNG pictures made with
 //!   `mesh render`.
+//! - `cargo xtask figures [--out DIR] [--size WxH]`: the chapter's figures made by
+//!   `mesh figures` into `docs/figures`, the README's gallery (size-checked).
 //! - `cargo xtask publish-check [--names-only]`: every package name free on crates.io
 //!   or ours, then `cargo publish --workspace --dry-run`.
 //! - `cargo xtask fuzz [--iterations N] [--format F] [--seed S]`: structure-aware
@@ -21,6 +23,7 @@
 
 mod bench;
 mod dataset;
+mod figures;
 mod fuzz;
 mod publish_check;
 mod render;
@@ -50,6 +53,8 @@ enum Command {
     Dataset(dataset::Args),
     /// Render a gallery of PNG pictures.
     Render(render::Args),
+    /// Draw the chapter's figures into docs/figures (the README's gallery).
+    Figures(figures::Args),
     /// Check names on crates.io and dry-run `cargo publish --workspace`.
     PublishCheck(publish_check::Args),
     /// Fuzz every mesh reader with mutated files.
@@ -62,13 +67,15 @@ fn main() {
     let cli = Cli::parse();
     // The commands that use the shared meshes skip them when absent, unless
     // MESH_REQUIRE_SHARED_DATA=1 (continuous integration) makes that a failure.
-    let uses_data = matches!(cli.command, Command::Validate(_) | Command::Render(_) | Command::Fuzz(_));
+    let uses_data =
+        matches!(cli.command, Command::Validate(_) | Command::Render(_) | Command::Figures(_) | Command::Fuzz(_));
     let required = if uses_data { mesh_testkit::data::require().map_err(Into::into) } else { Ok(()) };
     let result = required.and_then(|()| match &cli.command {
         Command::Validate(args) => validate::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Dataset(args) => dataset::run(args),
         Command::Render(args) => render::run(args),
+        Command::Figures(args) => figures::run(args),
         Command::PublishCheck(args) => publish_check::run(args),
         Command::Fuzz(args) => fuzz::run(args),
         Command::Tidy(args) => tidy::run(args),

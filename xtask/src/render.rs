@@ -16,7 +16,7 @@ pub struct Args {
 }
 
 /// Runs `mesh` with arguments through cargo (so it is built first).
-fn mesh(args: &[&str]) -> Result<()> {
+pub(crate) fn mesh(args: &[&str]) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo).args(["run", "--quiet", "--package", "mesh-cli", "--"]).args(args).status()?;
     if !status.success() {
@@ -25,7 +25,8 @@ fn mesh(args: &[&str]) -> Result<()> {
     Ok(())
 }
 
-fn path_str(p: &Path) -> Result<&str> {
+/// A path as UTF-8 text for a command line.
+pub(crate) fn path_str(p: &Path) -> Result<&str> {
     p.to_str().ok_or_else(|| format!("{} is not valid UTF-8", p.display()).into())
 }
 

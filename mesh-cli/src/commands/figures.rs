@@ -251,7 +251,7 @@ pub fn blob(level: u32) -> CliResult<TriMesh> {
     for p in m.positions_mut() {
         let d = p.normalize();
         let bump: f64 = centres.iter().map(|c| (-(d - *c).length_squared() / 0.18).exp()).sum();
-        let dent: f64 = dents.iter().map(|c| (-(d - *c).length_squared() / 0.07).exp()).sum();
+        let dent: f64 = dents.iter().map(|c| (-(d - *c).length_squared() / 0.12).exp()).sum();
         *p = d * (0.75 + 0.45 * bump - 0.4 * dent);
     }
     Ok(m)
@@ -380,7 +380,7 @@ fn figure_2_4(cx: &Context) -> CliResult<Made> {
             tutte_uv = Some(uv.clone());
         }
         let mut scene = Scene::new();
-        scene.surface(&mesh, Paint::Texture { uv, texture: Texture::checker(14) }, Shading::Smooth)?;
+        scene.surface(&mesh, Paint::Texture { uv, texture: Texture::checker(10) }, Shading::Smooth)?;
         panels.push(Panel::new(cx.render(&scene, &view, false)?, label));
     }
     // The Tutte map itself: the mesh drawn in the (u, v) plane.
@@ -794,6 +794,98 @@ mod tests {
         let cx = Context { width: 64, height: 64, data: Some(dir.path().to_path_buf()) };
         let e = make("2.8", &cx).err().unwrap();
         assert!(e.downcast_ref::<FiguresError>().is_some_and(|e| matches!(e, FiguresError::MissingFile { .. })), "{e}");
+    }
+
+    /// Every panel of `made` has at least `fraction` of its pixels off white.
+    fn assert_panels_drawn(id: &str, made: &Made, fraction: f64) {
+        let image = made.figure.compose().unwrap();
+        for (k, r) in made.figure.panel_rects().iter().enumerate() {
+            let drawn = image.count_differing(*r, DVec3::ONE);
+            assert!(
+                drawn as f64 >= fraction * (r.width * r.height) as f64,
+                "figure {id} panel {k} is nearly blank ({drawn} of {} pixels drawn)",
+                r.width * r.height
+            );
+        }
+        assert!(!made.caption.contains('\n') && made.caption.starts_with(&format!("Figure {id}:")));
+    }
+
+    #[test]
+    fn every_figure_draws_every_panel_with_stand_ins() {
+        let cx = Context { width: 96, height: 80, data: None };
+        for spec in FIGURES {
+            let made = (spec.make)(&cx).unwrap_or_else(|e| panic!("figure {}: {e}", spec.id));
+            let image = made.figure.compose().unwrap();
+            let cols = made.figure.columns.min(made.figure.panels.len());
+            let rows = made.figure.panels.len().div_ceil(cols);
+            use mesh_render::figure::{CAPTION_HEIGHT, GAP, TITLE_HEIGHT};
+            assert_eq!(image.width(), GAP + cols * (96 + GAP), "figure {}", spec.id);
+            assert_eq!(image.height(), TITLE_HEIGHT + rows * (80 + CAPTION_HEIGHT + GAP), "figure {}", spec.id);
+            assert_panels_drawn(spec.id, &made, 0.05);
+        }
+    }
+
+    #[test]
+    fn figures_on_the_shared_meshes() {
+        let Some(dir) = mesh_testkit::data::shared_data() else { return };
+        let cx = Context { width: 120, height: 100, data: Some(dir) };
+        for id in ["2.4", "2.8", "2.10", "2.11"] {
+            let made = make(id, &cx).unwrap_or_else(|e| panic!("figure {id}: {e}"));
+            assert_panels_drawn(id, &made, 0.05);
+            assert!(made.caption.contains(".o"), "figure {id} does not name its shared mesh: {}", made.caption);
+        }
+    }
+
+    #[test]
+    fn tutte_checker_cells_are_never_flipped() {
+        // On the parameterization itself: every UV triangle of the Tutte map
+        // is counter-clockwise, so no cell of the checker is mirrored.
+        let mut meshes = vec![relief_disk().unwrap()];
+        if let Some(path) = mesh_testkit::data::shared_file("cgal_nefertiti.off") {
+            meshes.push(mesh_io::read(&path).unwrap().mesh);
+        }
+        for mesh in &meshes {
+            let p = parameterize(mesh, &ParamOptions { method: ParamMethod::Tutte, ..Default::default() }).unwrap();
+            let mut uv = corner_uvs(mesh, &p.uv).unwrap();
+            normalize_uvs(&mut uv);
+            let flipped = uv.iter().filter(|t| (t[1] - t[0]).perp_dot(t[2] - t[0]) <= 0.0).count();
+            assert_eq!(flipped, 0, "{} of {} UV triangles not counter-clockwise", flipped, uv.len());
+        }
+    }
+
+    #[test]
+    fn convex_caps_are_red_and_dents_blue() {
+        let mesh = blob(4).unwrap();
+        let pc = pointwise_curvature(&mesh, &PointwiseOptions::default()).unwrap();
+        let classes = CurvatureClasses::fit(&pc.mean, &pc.gaussian);
+        let p = mesh.positions();
+        // The outermost vertex is on a bump's cap: convex, red.
+        let top = (0..p.len()).max_by(|&a, &b| p[a].length().total_cmp(&p[b].length())).unwrap();
+        let c = classes.color(pc.mean[top], pc.gaussian[top]);
+        assert!(c.x > 0.6 && c.y < 0.3 && c.z < 0.3, "convex vertex coloured {c}");
+        // The vertex nearest a dent's centre direction is at the bottom of a cup: concave, blue.
+        let dent = DVec3::new(-0.95, -0.2, 0.25).normalize();
+        let bottom =
+            (0..p.len()).max_by(|&a, &b| p[a].normalize().dot(dent).total_cmp(&p[b].normalize().dot(dent))).unwrap();
+        let c = classes.color(pc.mean[bottom], pc.gaussian[bottom]);
+        assert!(c.z > 0.6 && c.x < 0.3, "concave vertex coloured {c}");
+    }
+
+    #[test]
+    fn the_wavelet_function_is_a_unit_coefficient() {
+        // Analysis of the synthesized function gives back the unit coefficient.
+        let sphere = shapes::icosphere(3).unwrap();
+        let mr = Multiresolution::analyze(&sphere, &MultiresOptions::default()).unwrap();
+        let psi = wavelet_function(&mr, 1, 3).unwrap();
+        let h = mr.hierarchy();
+        let mut data: Vec<f64> = (0..psi.len()).map(|hv| psi[h.input_index(hv).unwrap()]).collect();
+        mr.bank().analyze(&mut data).unwrap();
+        let at = h.vertex_count(1).unwrap() + 3;
+        for (i, x) in data.iter().enumerate() {
+            let expected = if i == at { 1.0 } else { 0.0 };
+            assert!((x - expected).abs() < 1e-12, "coefficient {i}: {x}");
+        }
+        assert!(wavelet_function(&mr, 1, 1_000_000).is_err());
     }
 
     #[test]
