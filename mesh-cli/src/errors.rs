@@ -61,6 +61,10 @@ fn library(e: CliError, given: Given<'_>, on_file: impl Fn(CliError) -> CliError
         Ok(e) => return on_file(curvature(*e, given)),
         Err(e) => e,
     };
+    let e = match e.downcast::<mesh_delaunay::DelaunayError>() {
+        Ok(e) => return on_file(delaunay(*e, given)),
+        Err(e) => e,
+    };
     match e.downcast::<mesh_wavelet::WaveletError>() {
         Ok(e) => on_file(wavelet(*e, given)),
         Err(e) => e,
@@ -202,6 +206,20 @@ pub fn curvature(e: mesh_curvature::CurvatureError, given: Given<'_>) -> CliErro
     match e {
         CurvatureError::Mesh(e) => core(e, given),
         CurvatureError::InvalidOption { name, reason } => option(name, &reason, given),
+        e => e.into(),
+    }
+}
+
+/// A mesh-delaunay error in command-line terms.
+pub fn delaunay(e: mesh_delaunay::DelaunayError, given: Given<'_>) -> CliError {
+    use mesh_delaunay::DelaunayError;
+    match e {
+        DelaunayError::Mesh(e) => core(e, given),
+        DelaunayError::InvalidOption { name, reason } => option(name, &reason, given),
+        DelaunayError::DegenerateLoop { loop_index, reason } => {
+            format!("polygon loop {} (counting from 1, the outer loop first) is degenerate: {reason}", loop_index + 1)
+                .into()
+        }
         e => e.into(),
     }
 }

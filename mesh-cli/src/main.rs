@@ -53,6 +53,8 @@ enum Command {
     Wavelet(commands::wavelet::Args),
     /// Operations over every mesh of a folder or pattern, in parallel and resumable, to JSON lines.
     Batch(commands::batch::Args),
+    /// Planar Delaunay triangulation of points (or by Lawson flips), Voronoi cells, constrained refinement of a polygon.
+    Delaunay(commands::delaunay::Args),
 }
 
 impl Command {
@@ -70,6 +72,7 @@ impl Command {
             Command::Spectral(a) => a.input_file(),
             Command::Subdivide(a) => a.input_file(),
             Command::Wavelet(a) => a.input_file(),
+            Command::Delaunay(a) => a.input_file(),
             Command::Generate(_) | Command::Nurbs(_) | Command::Batch(_) | Command::Figures(_) => None,
         }
     }
@@ -85,6 +88,7 @@ impl Command {
             Command::Subdivide(args) => args.given(),
             Command::Wavelet(args) => args.given(),
             Command::Curvature(args) => args.given(),
+            Command::Delaunay(args) => args.given(),
             _ => Vec::new(),
         }
     }
@@ -127,6 +131,7 @@ fn main() {
         Command::Subdivide(args) => commands::wavelet::run_subdivide(args),
         Command::Wavelet(args) => commands::wavelet::run(args),
         Command::Batch(args) => commands::batch::run(args),
+        Command::Delaunay(args) => commands::delaunay::run(args),
     };
     if let Err(e) = result {
         let e = errors::translate(e, &cli.command.given(), cli.command.input_file());

@@ -13,6 +13,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use mesh_curvature::*;
+use mesh_delaunay::*;
 use mesh_geodesic::*;
 use mesh_io::*;
 use mesh_kernel::*;
@@ -56,6 +57,9 @@ fn glob_imports_of_every_crate_resolve_the_common_names() {
         GridOptions::default(),
         ReadOptions::default(),
         WriteOptions::default(),
+        LawsonOptions::default(),
+        VoronoiOptions::default(),
+        RefineOptions::default(),
     );
     // Selectable enums: one list of names each, parsed back by `FromStr`.
     let names: Vec<String> = [
@@ -92,7 +96,7 @@ fn glob_imports_of_every_crate_resolve_the_common_names() {
     let _outputs: (EigenSolver, Option<SpectralCompressionPoint>, Option<WaveletCompressionPoint>) =
         (EigenSolver::Dense, None, None);
     let _compressed: Option<WaveletCompression> = None;
-    let _errors: [Option<Box<dyn std::error::Error>>; 8] = [
+    let _errors: [Option<Box<dyn std::error::Error>>; 9] = [
         None::<MeshError>.map(|e| e.into()),
         None::<IoError>.map(|e| e.into()),
         None::<NurbsError>.map(|e| e.into()),
@@ -101,6 +105,7 @@ fn glob_imports_of_every_crate_resolve_the_common_names() {
         None::<GeodesicError>.map(|e| e.into()),
         None::<SpectralError>.map(|e| e.into()),
         None::<WaveletError>.map(|e| e.into()),
+        None::<DelaunayError>.map(|e| e.into()),
     ];
 }
 
@@ -115,10 +120,11 @@ fn every_algorithm_crate_re_exports_the_kernel() {
     assert!(same(&mesh_geodesic::mesh_kernel::shapes::icosphere(1).expect("geodesic")));
     assert!(same(&mesh_spectral::mesh_kernel::shapes::icosphere(1).expect("spectral")));
     assert!(same(&mesh_wavelet::mesh_kernel::shapes::icosphere(1).expect("wavelet")));
+    assert!(same(&mesh_delaunay::mesh_kernel::shapes::icosphere(1).expect("delaunay")));
 }
 
 /// The crates whose roots share one namespace.
-const CRATES: [&str; 8] = [
+const CRATES: [&str; 9] = [
     "mesh-kernel",
     "mesh-io",
     "mesh-nurbs",
@@ -127,6 +133,7 @@ const CRATES: [&str; 8] = [
     "mesh-geodesic",
     "mesh-spectral",
     "mesh-wavelet",
+    "mesh-delaunay",
 ];
 
 /// Re-exports of one item under one name by several crates: the kernel and

@@ -4,6 +4,7 @@ pub mod batch;
 pub mod clean;
 pub mod convert;
 pub mod curvature;
+pub mod delaunay;
 pub mod figures;
 pub mod generate;
 pub mod geodesic;
