@@ -113,6 +113,8 @@ fn bad_input_is_an_error_not_a_panic() {
     // Never the input file.
     let (ok, _, err) = mesh(&["delaunay", line.to_str().unwrap(), "--out", line.to_str().unwrap()]);
     assert!(!ok && err.contains("refusing to overwrite"), "{err}");
+    let (ok, _, err) = mesh(&["delaunay", "--random", "1000000000000"]);
+    assert!(!ok && err.contains("at most"), "{err}");
     let (ok, _, err) = mesh(&["delaunay", "--random", "2"]);
     assert!(!ok && err.contains("3 distinct points"), "{err}");
 }

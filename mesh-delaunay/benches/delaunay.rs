@@ -38,9 +38,9 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| black_box(lawson_flips(p, &sweep, &LawsonOptions::default())))
             });
         }
-        // About n vertices: a triangle of area 2 a per vertex in a domain of area 3.84.
+        // An area bound of (domain area) / 2n: about 1.55 n vertices.
         let domain = square_with_hole();
-        let area = domain.area() / (2.0 * n as f64) * 1.0;
+        let area = domain.area() / (2.0 * n as f64);
         let o = RefineOptions { max_area: Some(area), max_added_vertices: 4 * n, ..Default::default() };
         group.bench_with_input(BenchmarkId::new("refine_area", n), &domain, |b, d| {
             b.iter(|| black_box(refine_polygon(d, &o)))

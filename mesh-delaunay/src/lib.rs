@@ -7,7 +7,7 @@
 //! | module | what it holds | chapter section |
 //! |---|---|---|
 //! | [`triangulate`] | [`delaunay`]: the Delaunay triangulation of points, duplicates mapped to their first occurrence | 2.2.2, Fig. 2.2 |
-//! | [`voronoi`] | [`voronoi()`]: the dual cells clipped to a box, the circumcentres | 2.2.2, Fig. 2.2 |
+//! | [`voronoi`](mod@voronoi) | [`voronoi()`]: the dual cells clipped to a box, the circumcentres | 2.2.2, Fig. 2.2 |
 //! | [`lawson`] | [`sweep_triangulation`] (an arbitrary one) and [`lawson_flips`] to Delaunay (Lawson 1977), with mesh-kernel's edge test | 2.2.2, Fig. 2.2 |
 //! | [`check`] | [`check_empty_circumcircles`]: the empty-circumcircle property with a relative tolerance | 2.2.2 |
 //! | [`refine`] | [`refine_polygon`] and [`refine_polygon_sized`]: constrained Delaunay of a polygon with holes, refined to an angle, an area and a varying size (Chew 1989, Ruppert 1995, Shewchuk 2002) | 2.2.2, 2.4 |

@@ -22,6 +22,8 @@ use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
 /// longest line.
 const MAX_TEXT_BYTES: u64 = 1 << 32;
 const MAX_LINE_BYTES: u64 = 4096;
+/// The most points `--random` makes (2^26; 1 GiB of points).
+const MAX_RANDOM: usize = 1 << 26;
 
 /// Arguments of `mesh delaunay`.
 #[derive(Debug, clap::Args)]
@@ -143,6 +145,9 @@ pub fn run(args: &Args) -> CliResult<()> {
         None => {
             let (name, points) = match (&args.input, args.random) {
                 (Some(path), _) => (path.display().to_string(), read_points(path)?),
+                (None, Some(n)) if n > MAX_RANDOM => {
+                    return Err(format!("--random {n}: at most {MAX_RANDOM} random points").into());
+                }
                 (None, Some(n)) => (format!("random:{n}:seed {}", args.seed), random_points(n, args.seed)),
                 (None, None) => return Err("give a points FILE, --random N, or --polygon FILE".into()),
             };
