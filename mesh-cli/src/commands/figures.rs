@@ -94,10 +94,9 @@ pub struct FigureSpec {
     pub make: fn(&Context) -> CliResult<Made>,
 }
 
-/// Every figure, in the chapter's order. Figure 2.2 (Delaunay against an
-/// arbitrary triangulation, with Voronoi cells) is one more entry here once
-/// the planar Delaunay code is in the workspace.
+/// Every figure, in the chapter's order.
 pub const FIGURES: &[FigureSpec] = &[
+    FigureSpec { id: "2.2", make: figure_2_2 },
     FigureSpec { id: "2.4", make: figure_2_4 },
     FigureSpec { id: "2.7", make: figure_2_7 },
     FigureSpec { id: "2.8", make: figure_2_8 },
@@ -655,6 +654,68 @@ fn figure_2_12(cx: &Context) -> CliResult<Made> {
             levels.saturating_sub(2)
         ),
     })
+}
+
+/// Figure 2.2: the same points triangulated arbitrarily (a sweep) and by
+/// Delaunay, reached from the sweep by Lawson's edge flips (mesh-delaunay;
+/// checked equal to spade's triangulation), with the Voronoi cells.
+fn figure_2_2(cx: &Context) -> CliResult<Made> {
+    use mesh_delaunay::{check_empty_circumcircles, delaunay, lawson_flips, sweep_triangulation, voronoi};
+    let mut rng = mesh_kernel::random::SplitMix64::new(22);
+    let points: Vec<DVec2> = (0..40).map(|_| DVec2::new(rng.signed(), 0.8 * rng.signed())).collect();
+    let sweep = sweep_triangulation(&points)?;
+    let flipped = lawson_flips(&points, &sweep, &Default::default())?;
+    let reference = delaunay(&points)?;
+    let sorted = |t: &[[u32; 3]]| {
+        let mut v: Vec<[u32; 3]> = t.iter().map(|f| rotate_smallest_first(*f)).collect();
+        v.sort_unstable();
+        v
+    };
+    if sorted(&flipped.triangles) != sorted(&reference.triangles) {
+        return Err("Lawson's flips did not reach spade's Delaunay triangulation".into());
+    }
+    let check = check_empty_circumcircles(&points, &flipped.triangles, 1e-9)?;
+    let cells = voronoi(&reference, &Default::default())?;
+    let fill = DVec3::new(0.86, 0.9, 0.97);
+    let panel = |triangles: &[[u32; 3]], with_cells: bool| -> CliResult<Image> {
+        let mut d = Drawing::new();
+        for f in triangles {
+            d.polygon(f.iter().map(|&v| points[v as usize]).collect(), fill);
+        }
+        d.triangle_edges(&points, triangles, BLACK, 1.2)?;
+        if with_cells {
+            for cell in &cells.cells {
+                for k in 0..cell.len() {
+                    d.segment(cell[k], cell[(k + 1) % cell.len()], RED, 1.2)?;
+                }
+            }
+        }
+        for &p in &points {
+            d.point(p, BLACK, 4.0)?;
+        }
+        Ok(d.render(cx.width, cx.height)?)
+    };
+    let panels = vec![
+        Panel::new(panel(&sweep, false)?, "(a) an arbitrary triangulation".to_owned()),
+        Panel::new(panel(&flipped.triangles, false)?, format!("(b) Delaunay after {} flips", flipped.flips)),
+        Panel::new(panel(&flipped.triangles, true)?, "(c) with its Voronoi cells".to_owned()),
+    ];
+    Ok(Made {
+        figure: Figure::row("Figure 2.2: Delaunay triangulation and Voronoi diagram", panels),
+        caption: format!(
+            "Figure 2.2: 40 random points triangulated by a sweep (a), flipped to Delaunay by {} Lawson edge flips \
+             (b; equal to spade's Delaunay triangulation, {} empty-circumcircle violations), and the Voronoi cells \
+             clipped to a box (c, red) (mesh-delaunay).",
+            flipped.flips, check.violations
+        ),
+    })
+}
+
+/// A triangle's corners rotated so that the smallest index comes first (the
+/// orientation kept), to compare triangulations as sets.
+fn rotate_smallest_first(t: [u32; 3]) -> [u32; 3] {
+    let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
+    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
 }
 
 /// Figure 2.13: recursive 4-to-1 splits of one triangle, in the plane.
