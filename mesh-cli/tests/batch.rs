@@ -118,8 +118,9 @@ fn patterns_select_files_and_bad_arguments_are_refused() {
     assert!(records(&out).iter().all(|r| r["output"].is_null()), "--no-fields writes no mesh file");
     for (extra, expect) in [
         (vec!["--do", "colour"], "invalid value 'colour'"),
-        (vec!["--jobs", "0"], "--jobs must be at least 1"),
-        (vec!["--k", "0"], "--k and --times must be at least 1"),
+        (vec!["--jobs", "0"], "--jobs must be in 1..=1024"),
+        (vec!["--times", "1000000000"], "--times in 1..=1000"),
+        (vec!["--k", "0"], "--k must be in 1..=10000"),
     ] {
         let mut args = vec!["batch", data.to_str().unwrap(), "--out", out.to_str().unwrap()];
         args.extend(extra);
@@ -130,4 +131,32 @@ fn patterns_select_files_and_bad_arguments_are_refused() {
     let missing = data.join("*.xyz");
     let (code, _, stderr) = mesh(&["batch", missing.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert!(code != 0 && stderr.contains("no mesh file"), "{stderr}");
+}
+
+/// The resume state follows the files: a deleted output is made again, a
+/// run with other options and then the first options again redoes the
+/// meshes (the output file holds the last run's fields), and the output
+/// folder may be the input folder.
+#[test]
+fn resuming_checks_the_outputs_and_the_last_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    dataset(&data);
+    std::fs::remove_file(data.join("broken.ply")).unwrap();
+    let d = data.to_str().unwrap();
+    let run = |ops: &str| {
+        let (code, stdout, stderr) = mesh(&["batch", d, "--do", ops, "--k", "6", "--times", "2", "--out", d, "--json"]);
+        assert_eq!(code, 0, "{stderr}");
+        let v: Value = serde_json::from_str(&stdout).unwrap();
+        (v["inputs"].as_u64().unwrap(), v["processed"].as_u64().unwrap())
+    };
+    assert_eq!(run("curvature"), (2, 2), "the output folder is the input folder: a.off and b.obj");
+    assert_eq!(run("curvature"), (2, 0));
+    std::fs::remove_file(data.join("meshes/a.off.ply")).unwrap();
+    assert_eq!(run("curvature"), (2, 1), "a deleted output is made again");
+    assert_eq!(run("hks"), (2, 2));
+    assert_eq!(run("curvature"), (2, 2), "the files hold hks fields now: curvature is redone");
+    let (code, info, _) = mesh(&["info", "--json", data.join("meshes/a.off.ply").to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(info.contains("\"k1\"") && !info.contains("\"hks0\""), "{info}");
 }

@@ -212,6 +212,9 @@ pub fn principal_curvature<'py>(
     Ok((vec1(py, t.k1), vec1(py, t.k2), points(py, t.d1)?, points(py, t.d2)?))
 }
 
+/// Most bins of [`shape_index_histogram`] (a bound on the allocation).
+const MAX_BINS: usize = 1 << 20;
+
 /// Area-weighted histogram of the shape index over `bins` bins of [-1, 1],
 /// from the pointwise curvature (quartic fit), flagged and planar vertices
 /// left out: `PointwiseCurvature::shape_index_histogram`, as `mesh batch`.
@@ -223,6 +226,9 @@ pub fn shape_index_histogram<'py>(
     f: Faces<'py>,
     bins: usize,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    if !(1..=MAX_BINS).contains(&bins) {
+        return Err(Failure::option(format!("bins must be in 1..={MAX_BINS}, got {bins}")).into());
+    }
     let arrays = Arrays::new(&v, &f)?;
     let h = run(py, move || -> Fallible<_> {
         Ok(pointwise_curvature(&arrays.mesh()?, &PointwiseOptions::default())?.shape_index_histogram(bins))

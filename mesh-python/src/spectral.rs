@@ -226,14 +226,27 @@ impl Harmonics {
     ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
         let pairs = self.mh.eigenpairs();
         let (trace, times) = run(py, || {
-            let times = match times {
-                Some(t) => t,
-                None => hks_times(pairs, count)?,
-            };
+            let times = times_for(pairs, times, count)?;
             Ok((heat_trace(pairs, &times)?, times))
         })?;
         Ok((vec1(py, trace), vec1(py, times)))
     }
+}
+
+/// Most times of a signature or a heat trace (a bound on the allocation).
+const MAX_TIMES: usize = 10_000;
+
+/// The given times, or `count` times log-spaced over the range the pairs
+/// resolve ([`hks_times`]); at most [`MAX_TIMES`] either way.
+fn times_for(pairs: &Eigenpairs, times: Option<Vec<f64>>, count: usize) -> Fallible<Vec<f64>> {
+    let n = times.as_ref().map_or(count, Vec::len);
+    if n > MAX_TIMES {
+        return Err(Failure::option(format!("at most {MAX_TIMES} times, got {n}")));
+    }
+    Ok(match times {
+        Some(t) => t,
+        None => hks_times(pairs, count)?,
+    })
 }
 
 fn hks_of<'py>(
@@ -243,10 +256,7 @@ fn hks_of<'py>(
     count: usize,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
     let (h, times) = run(py, || {
-        let times = match times {
-            Some(t) => t,
-            None => hks_times(pairs, count)?,
-        };
+        let times = times_for(pairs, times, count)?;
         Ok((hks(pairs, &times)?, times))
     })?;
     let (n, t) = (pairs.vertex_count(), times.len());

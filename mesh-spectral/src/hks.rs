@@ -48,9 +48,13 @@ pub fn heat_kernel_signature(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<Ve
 /// unit of length. O(k |times|).
 ///
 /// # Errors
-/// `SpectralError::InvalidOption` (`times`) for a time that is negative or not finite.
+/// `SpectralError::InvalidOption` (`times`) for a time that is negative or not finite, (`pairs`) for an
+/// eigenvalue that is not finite.
 pub fn heat_trace(pairs: &Eigenpairs, times: &[f64]) -> Result<Vec<f64>> {
     check_times(times)?;
+    if let Some(bad) = pairs.values.iter().find(|l| !l.is_finite()) {
+        return Err(SpectralError::InvalidOption { name: "pairs", reason: format!("eigenvalue {bad} is not finite") });
+    }
     Ok(times.iter().map(|&t| pairs.values.iter().map(|&lambda| (-lambda.max(0.0) * t).exp()).sum()).collect())
 }
 

@@ -58,8 +58,8 @@ pub fn run(args: &Args) -> Result<()> {
     let shared: Vec<(String, TriMesh)> = match mesh_testkit::data::shared_data() {
         Some(dir) => SHARED
             .iter()
-            .filter_map(|name| Some(((*name).to_owned(), mesh_io::read(dir.join(name)).ok()?.mesh)))
-            .collect(),
+            .map(|name| Ok(((*name).to_owned(), mesh_io::read(dir.join(name))?.mesh)))
+            .collect::<Result<_>>()?,
         None => Vec::new(),
     };
     let mut rng = SplitMix64::new(args.seed);
@@ -76,7 +76,8 @@ pub fn run(args: &Args) -> Result<()> {
         mesh_io::write(&path, &mesh, &mesh_io::WriteOptions::default())?;
         if broken {
             let bytes = std::fs::read(&path)?;
-            std::fs::write(&path, &bytes[..bytes.len() / 3])?;
+            let cut = &bytes[..bytes.len() / 3];
+            mesh_io::write_atomic(&path, |w| w.write_all(cut).map_err(|e| mesh_io::IoError::io(&path, e)))?;
         }
         listing.push(json!({
             "file": name,

@@ -67,8 +67,10 @@ fn main() {
     let cli = Cli::parse();
     // The commands that use the shared meshes skip them when absent, unless
     // MESH_REQUIRE_SHARED_DATA=1 (continuous integration) makes that a failure.
-    let uses_data =
-        matches!(cli.command, Command::Validate(_) | Command::Render(_) | Command::Figures(_) | Command::Fuzz(_));
+    let uses_data = matches!(
+        cli.command,
+        Command::Validate(_) | Command::Render(_) | Command::Figures(_) | Command::Fuzz(_) | Command::Dataset(_)
+    );
     let required = if uses_data { mesh_testkit::data::require().map_err(Into::into) } else { Ok(()) };
     let result = required.and_then(|()| match &cli.command {
         Command::Validate(args) => validate::run(args),

@@ -47,8 +47,11 @@ def mesh_files(root, recursive=True):
         return [str(root)]
     if not root.is_dir():
         raise FileNotFoundError(f"{root}: no such file or folder")
+    def unreadable(error):
+        raise OSError(f"{error.filename}: cannot be listed: {error.strerror}") from error
+
     found = []
-    for folder, dirs, files in os.walk(root, followlinks=False):
+    for folder, dirs, files in os.walk(root, followlinks=False, onerror=unreadable):
         dirs.sort()
         found.extend(str(Path(folder) / f) for f in files if f.lower().endswith(MESH_EXTENSIONS))
         if not recursive:
@@ -65,7 +68,10 @@ def descriptor(path, k=30, times=8, bins=16):
     ``heat_trace`` and ``times`` (``times`` values of
     :meth:`meshkit.Harmonics.heat_trace` from ``k`` eigenpairs), ``seconds``.
     Both descriptors are independent of the unit of length and of rigid
-    motions, so files of any scale compare.
+    motions for coordinates in double precision, so files of any scale
+    compare; flat regions of files rounded to single precision or to 6-7
+    digits carry rounding noise that the histogram counts as curvature
+    (see ``mesh_curvature::PLANAR_CURVEDNESS``).
     """
     start = time.perf_counter()
     record = {"file": str(path)}
@@ -80,7 +86,9 @@ def descriptor(path, k=30, times=8, bins=16):
             heat_trace=[float(x) for x in trace],
             times=[float(x) for x in t],
         )
-    except Exception as e:  # every failure becomes a record; the run goes on
+    except (KeyboardInterrupt, SystemExit):
+        raise
+    except BaseException as e:  # every failure (a Rust panic too) becomes a record; the run goes on
         record.update(status="failed", error=f"{type(e).__name__}: {e}")
     record["seconds"] = time.perf_counter() - start
     return record
@@ -94,8 +102,21 @@ def map_descriptors(paths, client=None, **options):
     paths = [str(p) for p in paths]
     if client is None:
         return [descriptor(p, **options) for p in paths]
+    from dask.distributed import as_completed
+
     futures = client.map(descriptor, paths, pure=False, **options)
-    return client.gather(futures)
+    index = {f.key: i for i, f in enumerate(futures)}
+    records = [None] * len(paths)
+    # Task by task: a task that fails on the cluster (its worker died, e.g.
+    # out of memory, more often than the scheduler allows) becomes a failed
+    # record instead of losing every other record.
+    for future in as_completed(futures):
+        i = index[future.key]
+        try:
+            records[i] = future.result()
+        except Exception as e:
+            records[i] = {"file": paths[i], "status": "failed", "error": f"{type(e).__name__}: {e}"}
+    return records
 
 
 def local_cluster(workers=2, threads_per_worker=1):
@@ -115,7 +136,11 @@ def local_cluster(workers=2, threads_per_worker=1):
         dashboard_address=None,
         env={"RAYON_NUM_THREADS": str(int(threads_per_worker))},
     )
-    return _ClusterClient(Client(cluster), cluster)
+    try:
+        return _ClusterClient(Client(cluster), cluster)
+    except BaseException:
+        cluster.close()
+        raise
 
 
 class _ClusterClient:

@@ -377,10 +377,11 @@ pub fn eigenpairs(l: &CsMat<f64>, mass: &[f64], k: usize, options: &EigenOptions
 /// Powers of two near the sizes of `L` and `M` (`M`'s an even power, so that
 /// its square root is exact), by which the pencil is divided: a mesh's mass
 /// matrix carries the square of its unit of length, and the solver works on
-/// a pencil of size near 1 whatever that unit is, so that every step (the
-/// shift, the deflation of the constant, the tolerances) sees the same
-/// numbers for a mesh in millimetres and in metres, and products of masses
-/// never over- or underflow. Division by powers of two changes no digit of
+/// a pencil whose largest entries lie in [1, 2) (mass) and [1, 2) (stiffness)
+/// whatever that unit is, so that every step (the shift, the deflation of
+/// the constant, the tolerances) sees numbers of the same size, within a
+/// factor of 4, for a mesh in millimetres and in metres, and products of
+/// masses never over- or underflow. Costs one copy of `L` and `M`. Division by powers of two changes no digit of
 /// the answer.
 struct Units {
     l: f64,

@@ -12,8 +12,9 @@ use std::path::{Component, Path, PathBuf};
 use crate::output::CliResult;
 
 /// A mesh file to process and its id (its path from the folder or the
-/// pattern's fixed prefix, `/` turned into `__`, so ids are unique within
-/// one input and stable between runs).
+/// pattern's fixed prefix, `/` turned into `__` and unusual characters
+/// into `_`: stable between runs; two paths that come out the same, such as
+/// `a b.ply` and `a_b.ply`, are refused by [`collect`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Input {
     pub path: PathBuf,
@@ -98,7 +99,16 @@ fn expand(arg: &Path, recursive: bool) -> CliResult<Vec<Input>> {
 /// Visits every file under `dir` down to `depth` folder levels, with its
 /// path relative to the starting folder; folder entries in sorted order.
 fn walk(dir: &Path, rel: &Path, depth: usize, visit: &mut dyn FnMut(&Path, &Path)) -> CliResult<()> {
-    let entries = std::fs::read_dir(dir).map_err(|e| format!("cannot list {}: {e}", dir.display()))?;
+    let entries = match std::fs::read_dir(dir) {
+        Ok(entries) => entries,
+        // A sub-folder that cannot be listed is reported and passed over;
+        // the folder the user named must be readable.
+        Err(e) if !rel.as_os_str().is_empty() => {
+            eprintln!("mesh: warning: {} not searched: {e}", dir.display());
+            return Ok(());
+        }
+        Err(e) => return Err(format!("cannot list {}: {e}", dir.display()).into()),
+    };
     let mut entries: Vec<_> = entries.filter_map(|e| e.ok()).collect();
     entries.sort_by_key(|e| e.file_name());
     for entry in entries {
@@ -124,15 +134,24 @@ fn path_matches(patterns: &[String], rel: &Path) -> bool {
     matches_from(patterns, &names)
 }
 
+/// Whether `patterns` match `names` component by component, `**` standing
+/// for any number of names: dynamic programming over (pattern, name)
+/// positions, O(patterns x names) whatever the number of `**`.
 fn matches_from(patterns: &[String], names: &[String]) -> bool {
-    match patterns.split_first() {
-        None => names.is_empty(),
-        Some((p, rest)) if p == "**" => (0..=names.len()).any(|skip| matches_from(rest, &names[skip..])),
-        Some((p, rest)) => match names.split_first() {
-            Some((n, names)) => glob_match(p.as_bytes(), n.as_bytes()) && matches_from(rest, names),
-            None => false,
-        },
+    let (np, nn) = (patterns.len(), names.len());
+    // ok[i][j]: patterns[i..] matches names[j..].
+    let mut ok = vec![vec![false; nn + 1]; np + 1];
+    ok[np][nn] = true;
+    for i in (0..np).rev() {
+        for j in (0..=nn).rev() {
+            ok[i][j] = if patterns[i] == "**" {
+                ok[i + 1][j] || (j < nn && ok[i][j + 1])
+            } else {
+                j < nn && glob_match(patterns[i].as_bytes(), names[j].as_bytes()) && ok[i + 1][j + 1]
+            };
+        }
     }
+    ok[0][0]
 }
 
 /// Shell-style match of one file name: `*` any run of characters, `?` one
@@ -231,7 +250,7 @@ mod tests {
         assert!(m("[a-c]x", "bx") && !m("[a-c]x", "dx") && m("[!a-c]x", "dx"));
         assert!(!m("[ab", "a"), "an unclosed class matches nothing");
         assert!(m("", "") && !m("", "a") && m("*", ""));
-        // Many stars on a long name stay fast (no exponential backtracking).
+        // Many stars on a long name stay fast (backtracking to the last star only).
         let name = "a".repeat(10_000);
         assert!(!m("*a*a*a*a*a*a*b", &name));
     }
@@ -244,6 +263,11 @@ mod tests {
         assert!(matches_from(&p("**/*.ply"), &n("x/y/a.ply")));
         assert!(!matches_from(&p("*/*.ply"), &n("a.ply")));
         assert!(matches_from(&p("x/**/a.ply"), &n("x/a.ply")));
+        // Many `**` against a deep path: no exponential search.
+        let deep = vec!["d"; 40].join("/") + "/a.ply";
+        let many = vec!["**"; 30].join("/") + "/*.off";
+        assert!(!matches_from(&p(&many), &n(&deep)));
+        assert!(matches_from(&p(&(vec!["**"; 30].join("/") + "/*.ply")), &n(&deep)));
     }
 
     #[test]

@@ -71,12 +71,32 @@ impl Stamp {
     }
 }
 
-/// What an earlier run left: the stamps of the meshes it finished
-/// successfully (with their record), and how many lines could not be read.
+/// What an earlier run left: the last record of every id (a later run of
+/// other options rewrites the id's output file, so only the last record
+/// says what the file holds), and how many lines could not be read.
 #[derive(Debug, Default)]
 pub struct Previous {
-    pub done: HashMap<Stamp, Value>,
+    pub last: HashMap<String, Last>,
     pub unreadable_lines: usize,
+}
+
+/// The last record of an id: its stamp, whether it succeeded, and the
+/// output file it wrote (relative to the output folder).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Last {
+    pub stamp: Stamp,
+    pub ok: bool,
+    pub output: Option<String>,
+}
+
+impl Previous {
+    /// Whether the mesh with `stamp` is done: its last record succeeded
+    /// with the same stamp, and the output file it wrote is still in `dir`.
+    pub fn is_done(&self, stamp: &Stamp, dir: &Path) -> bool {
+        self.last.get(&stamp.id).is_some_and(|last| {
+            last.ok && last.stamp == *stamp && last.output.as_ref().is_none_or(|o| dir.join(o).is_file())
+        })
+    }
 }
 
 /// Reads the journal in `dir`, if there is one. A line cut short by an
@@ -111,11 +131,14 @@ pub fn read(dir: &Path) -> CliResult<Previous> {
             continue;
         }
         let record: Option<Value> = serde_json::from_str(text.trim()).ok();
-        match record.as_ref().and_then(|r| Some((Stamp::from_json(r)?, r.get("status")?.as_str()?))) {
-            Some((stamp, "ok")) => {
-                previous.done.insert(stamp, record.unwrap_or(Value::Null));
+        let last = record.as_ref().and_then(|r| {
+            let output = r.get("output").and_then(Value::as_str).map(str::to_owned);
+            Some(Last { stamp: Stamp::from_json(r)?, ok: r.get("status")?.as_str()? == "ok", output })
+        });
+        match last {
+            Some(last) => {
+                previous.last.insert(last.stamp.id.clone(), last);
             }
-            Some(_) => {}
             None => previous.unreadable_lines += 1,
         }
     }
@@ -210,14 +233,18 @@ mod tests {
         f.write_all(br#"{"id":"c.ply","inp"#).unwrap();
         drop(f);
         let prev = read(dir.path()).unwrap();
-        assert_eq!(prev.done.len(), 1);
-        assert!(prev.done.contains_key(&ok));
+        assert!(prev.is_done(&ok, dir.path()));
+        assert!(!prev.is_done(&failed, dir.path()));
         assert_eq!(prev.unreadable_lines, 1);
         // Appending after the cut line starts a new line.
         let other = Stamp { id: "d.ply".into(), ..ok.clone() };
         Journal::open(dir.path()).unwrap().append(&record(&other, "ok")).unwrap();
         let prev = read(dir.path()).unwrap();
-        assert_eq!((prev.done.len(), prev.unreadable_lines), (2, 1));
+        assert!(prev.is_done(&other, dir.path()) && prev.is_done(&ok, dir.path()));
+        assert_eq!(prev.unreadable_lines, 1);
+        // Only the last record of an id counts: a later failure undoes it.
+        Journal::open(dir.path()).unwrap().append(&record(&ok, "failed")).unwrap();
+        assert!(!read(dir.path()).unwrap().is_done(&ok, dir.path()));
         // A changed input or configuration is not the same stamp.
         std::fs::write(&input, b"ply changed").unwrap();
         assert_ne!(Stamp::of("a.ply", &input, "info").unwrap(), ok);

@@ -7,7 +7,7 @@
 //!
 //! - Inputs: folders (their mesh files; sub-folders with `--recursive`),
 //!   patterns (`'data/**/*.ply'`, quoted so the shell leaves them alone) and
-//!   files; never anything under `OUT`.
+//!   files; never the per-mesh files a batch wrote (`OUT/meshes`).
 //! - `OUT/results.jsonl`: one JSON object per mesh, appended as each one
 //!   finishes: the input's path, size and time stamp, the configuration,
 //!   `status` (`ok` or `failed` with its `error`), vertex and face counts,
@@ -17,9 +17,10 @@
 //!   its record.
 //! - A mesh that fails is recorded with its error and the run goes on; the
 //!   exit status is 1 when any mesh failed, after all were tried.
-//! - Running again skips the meshes whose record says `ok` for the same
-//!   file (path, size, modification time) and configuration, so an
-//!   interrupted run resumes where it stopped; `--redo` processes all.
+//! - Running again skips the meshes whose last record says `ok` for the
+//!   same file (path, size, modification time) and configuration and whose
+//!   output file is still there, so an interrupted run resumes where it
+//!   stopped; `--redo` processes all.
 //! - Progress: a bar on a terminal, one line per mesh otherwise.
 
 mod inputs;
@@ -81,29 +82,36 @@ pub struct Args {
 /// The folder of per-mesh files inside the output folder.
 const MESHES: &str = "meshes";
 
+/// Bounds of the options that size allocations or thread pools.
+const MAX_K: usize = 10_000;
+const MAX_TIMES: usize = 1_000;
+const MAX_JOBS: usize = 1_024;
+
 /// Runs `mesh batch`.
 pub fn run(args: &Args) -> CliResult<()> {
     let start = Instant::now();
     let mut ops = args.ops.clone();
     ops.sort();
     ops.dedup();
-    if args.k == 0 || args.times == 0 {
-        return Err("--k and --times must be at least 1".into());
+    if !(1..=MAX_K).contains(&args.k) || !(1..=MAX_TIMES).contains(&args.times) {
+        return Err(format!("--k must be in 1..={MAX_K} and --times in 1..={MAX_TIMES}").into());
     }
     let jobs = match args.jobs {
-        Some(0) => return Err("--jobs must be at least 1".into()),
+        Some(n) if !(1..=MAX_JOBS).contains(&n) => return Err(format!("--jobs must be in 1..={MAX_JOBS}").into()),
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
     std::fs::create_dir_all(args.out.join(MESHES))
         .map_err(|e| format!("cannot create {}: {e}", args.out.join(MESHES).display()))?;
-    let all = inputs::collect(&args.inputs, args.recursive, &args.out)?;
+    // Only what this command writes is left out of the inputs (the output
+    // folder may be the input folder).
+    let all = inputs::collect(&args.inputs, args.recursive, &args.out.join(MESHES))?;
     let config = config_string(&ops, args);
     let previous = if args.redo { journal::Previous::default() } else { journal::read(&args.out)? };
     let mut todo = Vec::new();
     for input in &all {
         let stamp = Stamp::of(&input.id, &input.path, &config)?;
-        if !previous.done.contains_key(&stamp) {
+        if !previous.is_done(&stamp, &args.out) {
             todo.push((input, stamp));
         }
     }
