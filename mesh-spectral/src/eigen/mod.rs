@@ -374,15 +374,18 @@ pub fn eigenpairs(l: &CsMat<f64>, mass: &[f64], k: usize, options: &EigenOptions
     Ok(out)
 }
 
-/// Powers of two near the sizes of `L` and `M` (`M`'s an even power, so that
-/// its square root is exact), by which the pencil is divided: a mesh's mass
+/// Powers of two by which the pencil is divided. `M` always: a mesh's mass
 /// matrix carries the square of its unit of length, and the solver works on
-/// a pencil whose largest entries lie in [1, 2) (mass) and [1, 2) (stiffness)
-/// whatever that unit is, so that every step (the shift, the deflation of
-/// the constant, the tolerances) sees numbers of the same size, within a
-/// factor of 4, for a mesh in millimetres and in metres, and products of
-/// masses never over- or underflow. Costs one copy of `L` and `M`. Division by powers of two changes no digit of
-/// the answer.
+/// masses whose largest lies in [1, 4) (an even power of two, so that its
+/// square root is exact) whatever that unit is, so that every step (the
+/// shift and the residual scale from Weyl's law, the deflation of the
+/// constant, the tolerances) sees numbers of the same size, within a factor
+/// of 4, for a mesh in millimetres and in metres. `L` only when its entries
+/// lie outside `[2^-100, 2^100]`: a mesh Laplacian's weights do not depend
+/// on the unit of length (cotangents), and dividing them by their largest
+/// (a sliver's huge cotangent on a scan) would move the spectrum away from
+/// Weyl's estimate of it. Division by powers of two changes no digit of the
+/// answer. Costs one copy of `L` and `M`.
 struct Units {
     l: f64,
     m: f64,
@@ -391,9 +394,10 @@ struct Units {
 impl Units {
     fn of(l: &CsMat<f64>, m: &CsMat<f64>) -> Self {
         let unit = |a: &CsMat<f64>| mesh_kernel::units::unit_of(a.data().iter().copied());
-        let mu = unit(m);
-        let even = 2f64.powi(mu.log2().round() as i32 & !1);
-        Self { l: unit(l), m: even }
+        let safe = |x: f64| (2f64.powi(-100)..=2f64.powi(100)).contains(&x);
+        let lu = unit(l);
+        let even = 2f64.powi(unit(m).log2().round() as i32 & !1);
+        Self { l: if safe(lu) { 1.0 } else { lu }, m: even }
     }
 
     fn is_identity(&self) -> bool {
