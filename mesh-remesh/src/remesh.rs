@@ -1,0 +1,343 @@
+//! [`remesh`]: the entry point, and the triangulation of each chart.
+
+use glam::{DVec2, DVec3};
+use mesh_delaunay::{refine_polygon_sized, PolygonDomain, RefineOptions};
+use mesh_kernel::{geometry, TriMesh};
+use mesh_param::{atlas, AtlasOptions, BoundaryMap, Chart, ChartLayout, ParamMethod, Spacing};
+
+use crate::error::{RemeshError, Result};
+use crate::flips::surface_delaunay_flips;
+use crate::locate::UvGrid;
+use crate::report::{quality_report, RemeshReport};
+use crate::seams::{chart_loops, sample_seams, Seams};
+
+/// The refinement's size bound is on a triangle's longest edge; Delaunay
+/// refinement then leaves edges between about half and all of it. The size
+/// asked for is this multiple of the edge length, so that the edges come
+/// out spread around it (measured on the sphere and torus of the tests: a
+/// mean edge within 10% of the edge length).
+pub const SIZE_FACTOR: f64 = 1.3;
+
+/// Options of [`remesh`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RemeshOptions {
+    /// The target edge length, in the unit of the input (finite, > 0).
+    pub edge_length: f64,
+    /// The smallest angle asked of the refinement inside each chart, in
+    /// degrees, in `[0, 35]`. Default `28`. Triangles along the seams keep
+    /// the seam samples and may miss it.
+    pub min_angle: f64,
+    /// The most output vertices. Default `4_000_000`. An edge length that
+    /// needs more (estimated from the area before any work: about
+    /// `1.15 area / edge_length^2`) is [`RemeshError::TooManyVertices`].
+    pub max_vertices: usize,
+    /// Charts are split while their mean area distortion exceeds this
+    /// (`mesh_param::AtlasOptions::max_area_distortion`, at least 1).
+    /// Default `1.5`.
+    pub max_area_distortion: f64,
+    /// Charts of at most about this many faces (default `None`: only the
+    /// distortion bound splits).
+    pub max_chart_faces: Option<usize>,
+    /// After the charts are stitched, flip edges toward a Delaunay mesh on
+    /// the surface where the two faces fold by less than this many degrees
+    /// (their normals' angle); `0` turns the flips off. Default `20`. The
+    /// refinement bounds angles in the parameter plane; the map's
+    /// anisotropy and the seams leave thin triangles in 3D, and flips
+    /// (which move no vertex) cure most of them.
+    pub max_fold_degrees: f64,
+    /// Compute the Hausdorff distance to the input (default `true`; it costs
+    /// about as much as the remeshing).
+    pub hausdorff: bool,
+}
+
+impl Default for RemeshOptions {
+    fn default() -> Self {
+        Self {
+            edge_length: 1.0,
+            min_angle: 28.0,
+            max_vertices: 4_000_000,
+            max_area_distortion: 1.5,
+            max_chart_faces: None,
+            max_fold_degrees: 20.0,
+            hausdorff: true,
+        }
+    }
+}
+
+/// A remeshed surface and its report.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Remeshed {
+    /// The new mesh: seam samples first, then the inside vertices chart by
+    /// chart; triangles oriented as the input.
+    pub mesh: TriMesh,
+    /// The chart of each output face.
+    pub face_chart: Vec<u32>,
+    /// Quality, distance and topology.
+    pub report: RemeshReport,
+}
+
+/// The atlas options used: mean-value maps onto a circle, split to the
+/// distortion bound.
+///
+/// Mean-value (Floater 2003) on a convex boundary is a bijection (Tutte's
+/// and Floater's theorem), so every chart's parameter domain is a convex
+/// polygon without folds: a polygon through any of its boundary points in
+/// order (the seam samples) is simple and lies inside it, so every point the
+/// refinement inserts has a containing triangle to lift it by. LSCM has a
+/// free, possibly non-convex (even overlapping) boundary, and the samples'
+/// polygon could leave it. The circle costs area distortion near the
+/// boundary, which the splitting bounds.
+pub fn atlas_options(options: &RemeshOptions) -> AtlasOptions {
+    AtlasOptions {
+        method: ParamMethod::MeanValue,
+        boundary: BoundaryMap::Circle(Spacing::ChordLength),
+        max_area_distortion: Some(options.max_area_distortion),
+        max_chart_faces: options.max_chart_faces,
+        ..Default::default()
+    }
+}
+
+fn check_options(mesh: &TriMesh, o: &RemeshOptions) -> Result<()> {
+    let h = o.edge_length;
+    if !(h.is_finite() && h > 0.0) {
+        return Err(RemeshError::InvalidOption { name: "edge_length", reason: format!("{h} is not finite and > 0") });
+    }
+    if !(0.0..=35.0).contains(&o.min_angle) {
+        return Err(RemeshError::InvalidOption {
+            name: "min_angle",
+            reason: format!("{} degrees is not in [0, 35]", o.min_angle),
+        });
+    }
+    if !(o.max_area_distortion.is_finite() && o.max_area_distortion >= 1.0) {
+        return Err(RemeshError::InvalidOption {
+            name: "max_area_distortion",
+            reason: format!("{} is not finite and >= 1", o.max_area_distortion),
+        });
+    }
+    if !(0.0..=90.0).contains(&o.max_fold_degrees) {
+        return Err(RemeshError::InvalidOption {
+            name: "max_fold_degrees",
+            reason: format!("{} degrees is not in [0, 90]", o.max_fold_degrees),
+        });
+    }
+    if o.max_vertices < 3 || o.max_vertices > u32::MAX as usize / 2 {
+        return Err(RemeshError::InvalidOption {
+            name: "max_vertices",
+            reason: format!("{} is not in [3, {}]", o.max_vertices, u32::MAX / 2),
+        });
+    }
+    let estimated = 1.155 * geometry::surface_area(mesh) / (h * h);
+    if estimated.is_nan() || estimated > o.max_vertices as f64 {
+        let estimated = if estimated.is_finite() { estimated.min(1e18) as usize } else { usize::MAX };
+        return Err(RemeshError::TooManyVertices { edge_length: h, estimated, limit: o.max_vertices });
+    }
+    Ok(())
+}
+
+/// Remeshes `mesh` to edges of about [`RemeshOptions::edge_length`]
+/// through a parameterization:
+///
+/// 1. an atlas of low-distortion charts ([`atlas_options`]);
+/// 2. the seams (chart boundaries) split into curves between corners and
+///    sampled once in 3D, by arc length, into segments near the edge length;
+/// 3. each chart's parameter domain, the polygon through its seam samples,
+///    refined by constrained Delaunay refinement (boundary kept) to a size
+///    of the edge length times the local parameter scale
+///    (`sqrt(uv area / surface area)`, interpolated from the chart's
+///    vertices) and the angle bound;
+/// 4. the new points lifted by barycentric interpolation in their
+///    containing parameter triangle; seam samples are one output vertex
+///    for every chart, so the output has no cracks where the input had
+///    none;
+/// 5. triangles oriented as the input (checked against the input face
+///    normal at each centroid, [`RemeshReport::normal_disagreements`]).
+///
+/// The report has the quality, the Hausdorff distance and the topology of
+/// both meshes. Cost: the atlas (a sparse factorization per chart and
+/// level of splitting), O(n log n) refinement in the output size, and the
+/// Hausdorff sampling (a grid per mesh).
+///
+/// # Errors
+///
+/// [`RemeshError::InvalidOption`] for options out of range;
+/// [`RemeshError::TooManyVertices`] when the edge length needs more than
+/// `max_vertices` vertices (checked before any work, and again as the
+/// charts are filled); [`RemeshError::Mesh`] for a non-manifold or empty
+/// input; [`RemeshError::Param`] when the atlas fails;
+/// [`RemeshError::Delaunay`] when a chart's polygon cannot be triangulated;
+/// [`RemeshError::ChartFailed`] for a chart that is not a disk, a
+/// refinement that does not finish, a point without a containing parameter
+/// triangle, or a collapsed output triangle.
+pub fn remesh(mesh: &TriMesh, options: &RemeshOptions) -> Result<Remeshed> {
+    check_options(mesh, options)?;
+    if mesh.face_count() == 0 {
+        return Err(mesh_kernel::MeshError::Empty.into());
+    }
+    mesh.manifold_connectivity()?;
+    let atlas = atlas(mesh, &atlas_options(options))?;
+    let loops = chart_loops(&atlas)?;
+    let mut seams = sample_seams(mesh, &atlas, &loops, options.edge_length, options.max_vertices)?;
+    let seam_vertices = seams.positions.len();
+    let mut faces: Vec<[u32; 3]> = Vec::new();
+    let mut face_chart = Vec::new();
+    let mut disagreements = 0;
+    for (c, lp) in loops.iter().enumerate() {
+        let chart = &atlas.charts[c];
+        let done = chart_triangles(c, chart, lp, &mut seams, options, mesh)?;
+        disagreements += done.1;
+        face_chart.extend(std::iter::repeat_n(c as u32, done.0.len()));
+        faces.extend(done.0);
+    }
+    let flips = if options.max_fold_degrees > 0.0 {
+        let limit = 20 * faces.len();
+        surface_delaunay_flips(&seams.positions, &mut faces, options.max_fold_degrees, limit)
+    } else {
+        0
+    };
+    let out = TriMesh::new(seams.positions, faces)?;
+    let mut report = quality_report(mesh, &out, options.edge_length, options.hausdorff);
+    report.charts = atlas.charts.len();
+    report.seam_curves = seams.curves;
+    report.seam_vertices = seam_vertices;
+    report.flips = flips;
+    report.normal_disagreements = disagreements;
+    report.chart_area_distortion_max =
+        atlas.charts.iter().map(|c| c.distortion.area_distortion_mean).fold(1.0, f64::max);
+    Ok(Remeshed { mesh: out, face_chart, report })
+}
+
+/// Which output vertex each chart boundary point is, and its UV: the loop
+/// through the seam samples.
+fn chart_polygon(chart: &Chart, lp: &[u32], seams: &Seams) -> (Vec<DVec2>, Vec<u32>) {
+    let (mut uv, mut ids) = (Vec::new(), Vec::new());
+    for i in 0..lp.len() {
+        let (ci, cj) = (lp[i] as usize, lp[(i + 1) % lp.len()] as usize);
+        let (a, b) = (chart.vertices[ci].0, chart.vertices[cj].0);
+        let (ua, ub) = (chart.uv[ci], chart.uv[cj]);
+        if let Some(&id) = seams.vertex_out.get(&a) {
+            uv.push(ua);
+            ids.push(id);
+        }
+        if let Some(samples) = seams.edge_samples.get(&(a.min(b), a.max(b))) {
+            if a < b {
+                for &(t, id) in samples {
+                    uv.push(ua.lerp(ub, t));
+                    ids.push(id);
+                }
+            } else {
+                for &(t, id) in samples.iter().rev() {
+                    uv.push(ub.lerp(ua, t));
+                    ids.push(id);
+                }
+            }
+        }
+    }
+    (uv, ids)
+}
+
+/// Triangulates one chart: its output triangles (new vertices appended to
+/// `seams.positions`) and how many disagree with the input's normal.
+fn chart_triangles(
+    c: usize,
+    chart: &Chart,
+    lp: &[u32],
+    seams: &mut Seams,
+    options: &RemeshOptions,
+    input: &TriMesh,
+) -> Result<(Vec<[u32; 3]>, usize)> {
+    let fail = |reason: String| RemeshError::ChartFailed { chart: c, reason };
+    if chart.layout == ChartLayout::FacesApart {
+        return Err(fail("the chart could not be flattened (laid out face by face)".into()));
+    }
+    if chart.distortion.flipped_faces > 0 || !chart.distortion.boundary_simple {
+        return Err(fail(format!(
+            "its map folds ({} flipped faces, simple boundary: {})",
+            chart.distortion.flipped_faces, chart.distortion.boundary_simple
+        )));
+    }
+    let cm = &chart.mesh;
+    let tris: Vec<[DVec2; 3]> = cm.faces().iter().map(|t| t.map(|v| chart.uv[v as usize])).collect();
+    let signed: f64 = tris.iter().map(|t| (t[1] - t[0]).perp_dot(t[2] - t[0])).sum();
+    let grid = UvGrid::new(&tris);
+    // Parameter scale per chart vertex: sqrt(uv area / surface area) of its faces.
+    let n = cm.vertex_count();
+    let (mut uv_area, mut area) = (vec![0.0; n], vec![0.0; n]);
+    for (t, f) in tris.iter().zip(cm.faces()) {
+        let a_uv = 0.5 * (t[1] - t[0]).perp_dot(t[2] - t[0]).abs();
+        let a3 = geometry::triangle_area(f.map(|v| cm.positions()[v as usize]));
+        for &v in f {
+            uv_area[v as usize] += a_uv;
+            area[v as usize] += a3;
+        }
+    }
+    let total = (uv_area.iter().sum::<f64>() / area.iter().sum::<f64>()).sqrt();
+    let chart_scale = if total.is_finite() && total > 0.0 { total } else { 1.0 };
+    let scale: Vec<f64> = (0..n)
+        .map(|v| {
+            let s = (uv_area[v] / area[v]).sqrt();
+            if s.is_finite() && s > 0.0 {
+                s
+            } else {
+                chart_scale
+            }
+        })
+        .collect();
+    let tol = 1e-9;
+    let h = options.edge_length * SIZE_FACTOR;
+    let size = |x: DVec2| match grid.locate(&tris, x, tol) {
+        Some((t, b)) => h * cm.faces()[t].iter().zip(b).map(|(&v, w)| w * scale[v as usize]).sum::<f64>(),
+        None => h * chart_scale,
+    };
+    let (outer, ids) = chart_polygon(chart, lp, seams);
+    let budget = options.max_vertices.saturating_sub(seams.positions.len());
+    let refine =
+        RefineOptions { min_angle: options.min_angle, max_area: None, max_added_vertices: budget, keep_boundary: true };
+    let domain = PolygonDomain { outer, holes: Vec::new() };
+    let r =
+        refine_polygon_sized(&domain, size, &refine).map_err(|source| RemeshError::Delaunay { chart: c, source })?;
+    if !r.complete {
+        return Err(RemeshError::TooManyVertices {
+            edge_length: options.edge_length,
+            estimated: seams.positions.len() + r.points.len(),
+            limit: options.max_vertices,
+        });
+    }
+    if r.input_vertices != ids.len() {
+        return Err(fail("the refinement changed the boundary".into()));
+    }
+    // Lift the new points.
+    let lift = |x: DVec2| -> Option<(usize, DVec3)> {
+        let (t, b) = grid.locate(&tris, x, tol)?;
+        let p = cm.faces()[t].iter().zip(b).map(|(&v, w)| w * cm.positions()[v as usize]).sum();
+        Some((t, p))
+    };
+    let mut index = ids;
+    for &x in &r.points[r.input_vertices..] {
+        let (_, p) =
+            lift(x).ok_or_else(|| fail(format!("the parameter point {x} lies in no triangle of the chart")))?;
+        index.push(seams.positions.len() as u32);
+        seams.positions.push(p);
+    }
+    let mut out = Vec::with_capacity(r.triangles.len());
+    let mut disagree = 0;
+    for t in &r.triangles {
+        let mut tri = t.map(|v| index[v as usize]);
+        if signed < 0.0 {
+            tri.swap(1, 2);
+        }
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            return Err(fail("an output triangle joins two copies of one seam point (a cut's tip)".into()));
+        }
+        let centroid = (r.points[t[0] as usize] + r.points[t[1] as usize] + r.points[t[2] as usize]) / 3.0;
+        let (ct, _) = lift(centroid).ok_or_else(|| fail(format!("the centroid {centroid} lies in no triangle")))?;
+        let face = chart.faces[ct];
+        let n_in = geometry::triangle_normal(input.triangle(face));
+        let p = tri.map(|v| seams.positions[v as usize]);
+        if geometry::double_area_vector(p).dot(n_in) < 0.0 {
+            disagree += 1;
+        }
+        out.push(tri);
+    }
+    Ok((out, disagree))
+}
