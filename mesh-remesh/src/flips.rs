@@ -12,14 +12,10 @@ use glam::DVec3;
 /// within `max_fold_degrees` of each other, and the flip leaves both new
 /// faces facing the same side as the old ones and creates no edge that is
 /// already there (so connectivity, topology and orientation are kept).
-/// At most `max_flips` flips. Returns the flips done. O(flips + F) with
+/// At most 20 flips per face. Returns the flips done. O(flips + F) with
 /// hash maps.
-pub(crate) fn surface_delaunay_flips(
-    positions: &[DVec3],
-    faces: &mut [[u32; 3]],
-    max_fold_degrees: f64,
-    max_flips: usize,
-) -> usize {
+pub(crate) fn surface_delaunay_flips(positions: &[DVec3], faces: &mut [[u32; 3]], max_fold_degrees: f64) -> usize {
+    let max_flips = 20 * faces.len();
     // Directed edge (a, b) -> face with a -> b in it.
     let mut owner: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * faces.len());
     for (f, t) in faces.iter().enumerate() {
@@ -98,10 +94,10 @@ mod tests {
             DVec3::new(0.0, -1.0, 0.0),
         ];
         let mut f = vec![[0, 1, 2], [1, 0, 3]];
-        assert_eq!(surface_delaunay_flips(&p, &mut f, 20.0, 100), 1);
+        assert_eq!(surface_delaunay_flips(&p, &mut f, 20.0), 1);
         assert_eq!(f, vec![[2, 0, 3], [3, 1, 2]]);
         // Flipping again changes nothing (already Delaunay).
-        assert_eq!(surface_delaunay_flips(&p, &mut f, 20.0, 100), 0);
+        assert_eq!(surface_delaunay_flips(&p, &mut f, 20.0), 0);
         // Folded by 90 degrees along the diagonal: kept.
         let q = vec![
             DVec3::new(-2.0, 0.0, 0.0),
@@ -110,6 +106,6 @@ mod tests {
             DVec3::new(0.0, 0.0, -1.0),
         ];
         let mut g = vec![[0, 1, 2], [1, 0, 3]];
-        assert_eq!(surface_delaunay_flips(&q, &mut g, 20.0, 100), 0);
+        assert_eq!(surface_delaunay_flips(&q, &mut g, 20.0), 0);
     }
 }

@@ -32,6 +32,7 @@
 //! that cannot be remeshed is an error, never a silently wrong mesh.
 #![deny(missing_docs)]
 
+mod collapse;
 pub mod error;
 mod flips;
 pub mod hausdorff;

@@ -121,6 +121,8 @@ pub struct RemeshReport {
     pub seam_curves: usize,
     /// Edge flips done after stitching ([`crate::RemeshOptions::max_fold_degrees`]).
     pub flips: usize,
+    /// Short edges collapsed after stitching.
+    pub collapses: usize,
     /// Output vertices on the seams (the first ones of the output).
     pub seam_vertices: usize,
     /// Smallest angle of the output, in degrees.
@@ -172,6 +174,7 @@ pub fn quality_report(input: &TriMesh, output: &TriMesh, h: f64, hausdorff: bool
         seam_curves: 0,
         seam_vertices: 0,
         flips: 0,
+        collapses: 0,
         min_angle_degrees: smallest.iter().copied().fold(f64::INFINITY, f64::min).min(180.0),
         mean_min_angle_degrees: smallest.iter().sum::<f64>() / nf,
         below_20_degrees: smallest.iter().filter(|&&a| a < 20.0).count() as f64 / nf,
