@@ -65,6 +65,10 @@ fn library(e: CliError, given: Given<'_>, on_file: impl Fn(CliError) -> CliError
         Ok(e) => return on_file(delaunay(*e, given)),
         Err(e) => e,
     };
+    let e = match e.downcast::<mesh_remesh::RemeshError>() {
+        Ok(e) => return on_file(remesh(*e, given)),
+        Err(e) => e,
+    };
     match e.downcast::<mesh_wavelet::WaveletError>() {
         Ok(e) => on_file(wavelet(*e, given)),
         Err(e) => e,
@@ -207,6 +211,22 @@ pub fn curvature(e: mesh_curvature::CurvatureError, given: Given<'_>) -> CliErro
         CurvatureError::Mesh(e) => core(e, given),
         CurvatureError::InvalidOption { name, reason } => option(name, &reason, given),
         e => e.into(),
+    }
+}
+
+/// A mesh-remesh error in command-line terms.
+pub fn remesh(e: mesh_remesh::RemeshError, given: Given<'_>) -> CliError {
+    use mesh_remesh::RemeshError;
+    match e {
+        RemeshError::Mesh(e) => core(e, given),
+        RemeshError::Param(e) => param(e, given),
+        RemeshError::InvalidOption { name, reason } => option(name, &reason, given),
+        RemeshError::TooManyVertices { edge_length, estimated, limit } => format!(
+            "--edge-length {edge_length} needs about {estimated} vertices, more than --max-vertices {limit}: \
+             choose a longer edge length or raise --max-vertices"
+        )
+        .into(),
+        other => other.into(),
     }
 }
 

@@ -55,6 +55,8 @@ enum Command {
     Batch(commands::batch::Args),
     /// Planar Delaunay triangulation of points (or by Lawson flips), Voronoi cells, constrained refinement of a polygon.
     Delaunay(commands::delaunay::Args),
+    /// Remeshes a surface to a target edge length through a parameterization, with a quality and Hausdorff report.
+    Remesh(commands::remesh::Args),
 }
 
 impl Command {
@@ -73,6 +75,7 @@ impl Command {
             Command::Subdivide(a) => a.input_file(),
             Command::Wavelet(a) => a.input_file(),
             Command::Delaunay(a) => a.input_file(),
+            Command::Remesh(a) => a.input.path(),
             Command::Generate(_) | Command::Nurbs(_) | Command::Batch(_) | Command::Figures(_) => None,
         }
     }
@@ -89,6 +92,7 @@ impl Command {
             Command::Wavelet(args) => args.given(),
             Command::Curvature(args) => args.given(),
             Command::Delaunay(args) => args.given(),
+            Command::Remesh(args) => args.given(),
             _ => Vec::new(),
         }
     }
@@ -132,6 +136,7 @@ fn main() {
         Command::Wavelet(args) => commands::wavelet::run(args),
         Command::Batch(args) => commands::batch::run(args),
         Command::Delaunay(args) => commands::delaunay::run(args),
+        Command::Remesh(args) => commands::remesh::run(args),
     };
     if let Err(e) = result {
         let e = errors::translate(e, &cli.command.given(), cli.command.input_file());

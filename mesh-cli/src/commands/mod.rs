@@ -11,6 +11,7 @@ pub mod geodesic;
 pub mod info;
 pub mod nurbs;
 pub mod param;
+pub mod remesh;
 pub mod render;
 pub mod report;
 pub mod spectral;
