@@ -99,7 +99,7 @@ pub struct HausdorffDistance {
     pub symmetric_relative: f64,
 }
 
-/// What [`crate::remesh`] reports.
+/// What [`crate::remesh()`] reports.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct RemeshReport {
