@@ -82,6 +82,19 @@ pub(crate) fn collapse_short_edges(
         if common != opposite {
             continue;
         }
+        // Valences after the collapse: an opposite vertex loses one
+        // neighbour, the kept vertex has the union; at least 3 inside and
+        // 2 on the boundary (a tetrahedron, or a lone triangle, stays).
+        let least = |_v: u32, nbrs: &[(u32, usize)]| if boundary(nbrs) { 2 } else { 3 };
+        let merged = na.len() + nb.len() - 2 - common.len();
+        if merged < least(a, &na).max(least(b, &nb))
+            || opposite.iter().any(|&c| {
+                let nc = neighbours(c, &vf, &faces);
+                nc.len() - 1 < least(c, &nc)
+            })
+        {
+            continue;
+        }
         let mut orders = Vec::new();
         if shared.len() == 1 || !bb {
             orders.push((b, a)); // remove b, keep a

@@ -150,6 +150,18 @@ pub(crate) fn sample_seams(
             edge_curve[edges[&key(w[0], w[1])]] = (c, i);
         }
     }
+    // A closed curve needs 3 segments (with 2, both would join the same two
+    // points); two one-segment curves between the same corners would be one
+    // output edge with four faces, so all but one get 2 segments.
+    let mut single: HashMap<EdgeKey, usize> = HashMap::new();
+    for (c, curve) in curves.iter().enumerate() {
+        let (a, b) = (curve[0], curve[curve.len() - 1]);
+        if a == b {
+            segments[c] = segments[c].max(3);
+        } else if segments[c] == 1 && single.insert(key(a, b), c).is_some() {
+            segments[c] = 2;
+        }
+    }
     loop {
         let mut bumped = false;
         for (c, lp) in loops.iter().enumerate() {

@@ -180,3 +180,37 @@ fn angles_beat_a_plain_upsample_at_the_same_vertex_count() {
     );
     assert!(r.report.below_20_degrees < up_report.below_20_degrees);
 }
+
+#[test]
+fn an_open_cylinder_keeps_two_boundary_loops() {
+    // A tube: charts whose circle maps shorten the seam direction; an ear
+    // on both sides of a seam once made an edge with four faces here.
+    let tube = shapes::by_name("cylinder", 32).unwrap();
+    for h in [0.05, 0.1, 0.2] {
+        let r = run(&tube, h);
+        check_watertight_and_topology(&tube, &r);
+        assert_eq!(r.report.output_topology.boundary_loops, Some(2));
+    }
+}
+
+#[test]
+fn a_long_edge_length_keeps_the_topology_or_is_refused() {
+    // Edges as long as the shape: few samples per seam. Either a valid
+    // sphere (at least a tetrahedron) or a typed error, never a pillow.
+    let sphere = shapes::icosphere(2).unwrap();
+    let mut refused = 0;
+    for h in [1.0, 1.5, 3.0, 10.0] {
+        match remesh(&sphere, &RemeshOptions { edge_length: h, ..Default::default() }) {
+            Ok(r) => {
+                check_watertight_and_topology(&sphere, &r);
+                assert!(r.mesh.vertex_count() >= 4, "{h}: {} vertices", r.mesh.vertex_count());
+            }
+            Err(RemeshError::ChartFailed { reason, .. }) => {
+                assert!(reason.contains("edge length"), "{reason}");
+                refused += 1;
+            }
+            Err(e) => panic!("{h}: {e}"),
+        }
+    }
+    assert!(refused < 4);
+}
