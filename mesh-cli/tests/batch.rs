@@ -1,18 +1,12 @@
 //! End-to-end tests of `mesh batch`: records, failures, resuming, patterns.
 
+mod common;
+
+use common::mesh_code as mesh;
+
 use std::path::Path;
-use std::process::Command;
 
 use serde_json::Value;
-
-fn mesh(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mesh")).args(args).output().expect("the mesh binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn records(out: &Path) -> Vec<Value> {
     let text = std::fs::read_to_string(out.join("results.jsonl")).unwrap();

@@ -1,20 +1,12 @@
 //! End-to-end tests of the `mesh` binary.
 
+mod common;
+
+use common::{json, mesh};
+
 use std::path::Path;
-use std::process::Command;
 
 use serde_json::Value;
-
-fn mesh(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mesh")).args(args).output().expect("the mesh binary runs");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
-}
-
-fn json(args: &[&str]) -> Value {
-    let (ok, stdout, stderr) = mesh(args);
-    assert!(ok, "mesh {args:?} failed: {stderr}");
-    serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("mesh {args:?} printed invalid JSON ({e}): {stdout}"))
-}
 
 #[test]
 fn info_on_builtin_shapes() {

@@ -1,19 +1,8 @@
 //! End-to-end tests of `mesh delaunay`.
 
-use std::process::Command;
+mod common;
 
-use serde_json::Value;
-
-fn mesh(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mesh")).args(args).output().expect("the mesh binary runs");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
-}
-
-fn json(args: &[&str]) -> Value {
-    let (ok, stdout, stderr) = mesh(args);
-    assert!(ok, "mesh {args:?} failed: {stderr}");
-    serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("mesh {args:?} printed invalid JSON ({e}): {stdout}"))
-}
+use common::{json, mesh};
 
 #[test]
 fn random_points_by_spade_and_by_flips_agree() {

@@ -2,13 +2,11 @@
 //! value typed, the file, what to do; nothing dropped or changed without a
 //! word.
 
-use std::path::Path;
-use std::process::Command;
+mod common;
 
-fn mesh(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_mesh")).args(args).output().expect("the mesh binary runs");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
-}
+use common::mesh;
+
+use std::path::Path;
 
 /// Runs a command that must fail; returns its standard error.
 fn fails(args: &[&str]) -> String {
