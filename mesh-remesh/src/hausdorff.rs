@@ -200,7 +200,10 @@ pub fn one_sided_hausdorff(from: &TriMesh, to: &TriMesh) -> Option<f64> {
         return None;
     }
     let samples = surface_samples(from);
-    let d = crate::par::max_map(&samples, |p| grid.distance(*p));
+    // NaN (none expected) is ignored by f64::max.
+    let d = mesh_kernel::par::map(samples.len(), |i| grid.distance(samples[i]))
+        .into_iter()
+        .fold(f64::NEG_INFINITY, f64::max);
     d.is_finite().then_some(d)
 }
 

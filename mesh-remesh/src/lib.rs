@@ -37,7 +37,6 @@ pub mod error;
 mod flips;
 pub mod hausdorff;
 pub mod locate;
-mod par;
 pub mod remesh;
 pub mod report;
 mod seams;
