@@ -2,11 +2,16 @@
 //! length (a table), and the comparison with a midpoint upsample at the same
 //! vertex count (a table and, with `--figure FILE`, a PNG).
 //!
-//! `cargo run --release -p mesh-remesh --example results [-- --figure mesh-remesh/docs/upsample.png]`
+//! `cargo run --release -p mesh-remesh --example results [-- [--figure mesh-remesh/docs/upsample.png] [FILE...]]`
+//!
+//! Files given (any format mesh-io reads, e.g. a large scan) are cleaned
+//! into an oriented manifold and added to the table, as is the shared dirty
+//! scan `npm_dragon_res3.ply`.
 
 use std::time::Instant;
 
 use glam::DVec3;
+
 use mesh_kernel::{geometry, shapes, TriMesh};
 use mesh_remesh::report::quality_report;
 use mesh_remesh::{remesh, RemeshOptions, RemeshReport};
@@ -44,10 +49,32 @@ fn main() {
         let r = remesh(&mesh, &RemeshOptions { edge_length: h, ..Default::default() }).unwrap();
         row(name, &r.report, t.elapsed().as_secs_f64() * 1e3);
     }
-    for name in ["cgal_nefertiti.off", "cgal_mushroom.off", "cgal_elephant.off", "npm_bunny.obj", "cgal_holes.off"] {
-        let Some(path) = mesh_testkit::shared_file(name) else { continue };
-        let raw = mesh_testkit::read_raw(&path).unwrap();
-        let mesh = TriMesh::new(raw.positions.iter().map(|p| DVec3::from_array(*p)).collect(), raw.faces).unwrap();
+    let names = [
+        "cgal_nefertiti.off",
+        "cgal_mushroom.off",
+        "cgal_elephant.off",
+        "npm_bunny.obj",
+        "cgal_holes.off",
+        "cgal_fandisk.off",
+        "npm_dragon_res3.ply",
+    ];
+    let mut files: Vec<(String, std::path::PathBuf)> =
+        names.iter().filter_map(|name| Some((name.to_string(), mesh_testkit::shared_file(name)?))).collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut i = 0;
+    while i < args.len() {
+        if args[i] == "--figure" {
+            i += 2;
+            continue;
+        }
+        let path = std::path::PathBuf::from(&args[i]);
+        files.push((path.file_name().map_or(args[i].clone(), |n| n.to_string_lossy().into_owned()), path));
+        i += 1;
+    }
+    for (name, path) in files {
+        let (positions, faces) = mesh_io::read(&path).unwrap().mesh.into_parts();
+        let clean = mesh_kernel::clean::CleanOptions { manifold: true, ..Default::default() };
+        let (mesh, _) = mesh_kernel::clean::clean(positions, faces, &clean).unwrap();
         let h = geometry::mean_edge_length(&mesh);
         let t = Instant::now();
         match remesh(&mesh, &RemeshOptions { edge_length: h, ..Default::default() }) {

@@ -7,9 +7,16 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use crate::smooth::smallest_angle;
+
+/// A triangle whose smallest angle is under this (radians, 10 degrees) is a
+/// sliver for the fold test of [`surface_delaunay_flips`].
+const SLIVER: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
 /// Flips edges of the oriented manifold triangles `faces` (in place) while
 /// their opposite angles sum to more than pi, the two faces' normals are
-/// within `max_fold_degrees` of each other, and the flip leaves both new
+/// within `max_fold_degrees` of each other (unless one is a sliver, whose
+/// normal is unreliable), the two new faces' normals are too, and the flip leaves both new
 /// faces facing the same side as the old ones and creates no edge that is
 /// already there (so connectivity, topology and orientation are kept).
 /// At most 20 flips per face. Returns the flips done. O(flips + F) with
@@ -49,11 +56,16 @@ pub(crate) fn surface_delaunay_flips(positions: &[DVec3], faces: &mut [[u32; 3]]
         let normal = |x: u32, y: u32, z: u32| (p(y) - p(x)).cross(p(z) - p(x));
         let (nf, ng) = (normal(a, b, c), normal(b, a, d));
         let (lf, lg) = (nf.length(), ng.length());
-        if !(lf > 0.0 && lg > 0.0) || nf.dot(ng) < cos_fold * lf * lg {
+        // A sliver's normal says little about the surface (a cap can point
+        // either way): the fold is judged on the new faces alone, against
+        // the pair's area-weighted normal.
+        let sliver = [[a, b, c], [b, a, d]].into_iter().any(|t| smallest_angle(t.map(p)) < SLIVER);
+        let both = lf > 0.0 && lg > 0.0;
+        if lf + lg <= 0.0 || lf.is_nan() || lg.is_nan() || (!sliver && (!both || nf.dot(ng) < cos_fold * lf * lg)) {
             continue;
         }
         // New faces (c, a, d) and (d, b, c).
-        let mean = nf / lf + ng / lg;
+        let mean = if sliver { nf + ng } else { nf / lf + ng / lg };
         let (n1, n2) = (normal(c, a, d), normal(d, b, c));
         if !(n1.dot(mean) > 0.0 && n2.dot(mean) > 0.0) {
             continue;

@@ -75,7 +75,8 @@ pub struct TriangleGrid {
 }
 
 impl TriangleGrid {
-    /// The grid over `mesh`'s faces (about two triangles per cell). `None`
+    /// The grid over `mesh`'s faces (cells about 1.5 mean edge lengths wide,
+    /// at most about 8 per triangle). `None`
     /// for a mesh without faces or with non-finite positions. O(F) for
     /// triangles of similar size.
     pub fn new(mesh: &TriMesh) -> Option<Self> {
@@ -91,10 +92,16 @@ impl TriangleGrid {
         }
         let size = (max - min).max(DVec3::splat(1e-300));
         let diag = size.length().max(1e-300);
-        // Cells about the mean edge length, at most 128 per axis.
+        // Cells about the mean edge length (a few triangles each), at most
+        // 4096 per axis and about 8 per triangle in all.
         let mean_edge = triangles.iter().map(|t| t[0].distance(t[1])).sum::<f64>() / triangles.len() as f64;
-        let cell = (1.5 * mean_edge).max(diag / 128.0).max(1e-300);
-        let dims = [0, 1, 2].map(|k| ((size[k] / cell).ceil() as usize).clamp(1, 128));
+        let max_cells = (8 * triangles.len()).clamp(1 << 12, 1 << 24);
+        let mut cell = (1.5 * mean_edge).max(diag / 4096.0).max(1e-300);
+        let dims_for = |cell: f64| [0, 1, 2].map(|k| ((size[k] / cell).ceil() as usize).clamp(1, 4096));
+        while dims_for(cell).iter().product::<usize>() > max_cells {
+            cell *= 1.25;
+        }
+        let dims = dims_for(cell);
         let count = dims[0] * dims[1] * dims[2];
         let mut grid = Self { triangles, min, cell, dims, start: vec![0; count + 1], items: Vec::new() };
         let ranges: Vec<[[usize; 3]; 2]> = grid
@@ -134,19 +141,27 @@ impl TriangleGrid {
         [0, 1, 2].map(|k| if q[k].is_nan() { 0 } else { (q[k].max(0.0) as usize).min(self.dims[k] - 1) })
     }
 
-    /// The distance from `p` to the nearest triangle: cells in growing
-    /// shells around `p`'s cell until the nearest triangle found is closer
-    /// than the next shell can be. O(triangles in the shells visited).
+    /// The distance from `p` to the nearest triangle ([`TriangleGrid::closest`]);
+    /// infinite for a grid without triangles.
     pub fn distance(&self, p: DVec3) -> f64 {
+        self.closest(p).map_or(f64::INFINITY, |(q, _)| q.distance(p))
+    }
+
+    /// The nearest point to `p` on the triangles and its triangle's index
+    /// (a face of the mesh the grid was built from): cells in growing shells
+    /// around `p`'s cell until the nearest triangle found is closer than the
+    /// next shell can be. `None` only for a non-finite `p`. O(triangles in
+    /// the shells visited).
+    pub fn closest(&self, p: DVec3) -> Option<(DVec3, usize)> {
         let c = self.cell_of(p);
-        let mut best = f64::INFINITY;
+        let mut best: Option<(f64, DVec3, usize)> = None;
         let max_r = self.dims.iter().copied().max().unwrap_or(1);
         for r in 0..=max_r {
             // Every point of a cell at Chebyshev ring r is at least r - 1
             // cells from p (anywhere in its cell), and at least p's
             // distance to the grid's box when p is outside it.
             let reach = ((r as f64 - 1.0).max(0.0) * self.cell).max(self.outside_distance(p));
-            if best <= reach && r > 0 {
+            if best.is_some_and(|b| b.0 <= reach) && r > 0 {
                 break;
             }
             let lo = c.map(|x| x as isize - r as isize);
@@ -158,16 +173,25 @@ impl TriangleGrid {
                         if r > 0 && !on_shell {
                             continue;
                         }
+                        // Skip a cell farther than the nearest point found.
+                        let lo_corner = self.min + DVec3::new(x as f64, y as f64, z as f64) * self.cell;
+                        let gap = (lo_corner - p).max(p - lo_corner - DVec3::splat(self.cell)).max(DVec3::ZERO);
+                        if best.is_some_and(|b| gap.length() > b.0) {
+                            continue;
+                        }
                         let cell = (z as usize * self.dims[1] + y as usize) * self.dims[0] + x as usize;
                         for &i in &self.items[self.start[cell] as usize..self.start[cell + 1] as usize] {
-                            let d = closest_point_on_triangle(p, self.triangles[i as usize]).distance(p);
-                            best = best.min(d);
+                            let q = closest_point_on_triangle(p, self.triangles[i as usize]);
+                            let d = q.distance(p);
+                            if best.is_none_or(|b| d < b.0) {
+                                best = Some((d, q, i as usize));
+                            }
                         }
                     }
                 }
             }
         }
-        best
+        best.filter(|b| b.0.is_finite()).map(|b| (b.1, b.2))
     }
 
     /// How far `p` is outside the grid's box (0 inside).

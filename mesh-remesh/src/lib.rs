@@ -14,6 +14,13 @@
 //! | [`locate`] | point location in a chart's parameter triangles (a uniform grid), barycentric coordinates | |
 //! | [`error`] | [`RemeshError`] and the crate's `Result` | |
 //!
+//! Inside, in the order [`remesh()`] runs them: `seams` (the seam curves
+//! and their samples), `chart` (a chart's polygon split at repeated
+//! points, refined and lifted), `stitch` (no output edge with a third
+//! face), `flips` and `collapse` (surface Delaunay flips, short edges),
+//! `smooth` (tangential smoothing projected onto the input; Botsch and
+//! Kobbelt 2004).
+//!
 //! ```
 //! use mesh_remesh::{remesh, RemeshOptions};
 //!
@@ -32,6 +39,7 @@
 //! that cannot be remeshed is an error, never a silently wrong mesh.
 #![deny(missing_docs)]
 
+mod chart;
 mod collapse;
 pub mod error;
 mod flips;
@@ -40,6 +48,8 @@ pub mod locate;
 pub mod remesh;
 pub mod report;
 mod seams;
+mod smooth;
+mod stitch;
 
 pub use error::RemeshError;
 pub use hausdorff::{closest_point_on_triangle, one_sided_hausdorff, TriangleGrid};

@@ -1,9 +1,9 @@
 //! The report of a remeshing: counts, angles, edge lengths against the
 //! target, Hausdorff distance to the input, and the topology of both.
 
-use mesh_kernel::{geometry, TriMesh};
+use mesh_kernel::{geometry, FaceId, TriMesh};
 
-use crate::hausdorff::one_sided_hausdorff;
+use crate::hausdorff::{one_sided_hausdorff, TriangleGrid};
 
 /// Euler characteristic, components and boundary loops of a mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -136,8 +136,17 @@ pub struct RemeshReport {
     pub edge_lengths: EdgeLengthStats,
     /// Hausdorff distances (`None` when not asked for).
     pub hausdorff: Option<HausdorffDistance>,
-    /// Output triangles whose normal points away from the input face's
-    /// normal at their centroid (across a sharp fold of the input).
+    /// Edges inside charts split at their midpoint so that no output edge
+    /// has more than two faces (charts reaching around a corner where
+    /// others meet).
+    pub stitch_splits: usize,
+    /// Vertex moves kept by the tangential smoothing
+    /// ([`crate::RemeshOptions::smoothing_rounds`]).
+    pub smoothing_moves: usize,
+    /// Output triangles of the final mesh whose normal points away from the
+    /// normal of the input face nearest to their centroid: folds of the
+    /// output, or triangles across a sharp fold of the input (or near a
+    /// thin part, where the nearest face may be on the other side).
     pub normal_disagreements: usize,
     /// Topology of the input.
     pub input_topology: TopologySummary,
@@ -180,6 +189,8 @@ pub fn quality_report(input: &TriMesh, output: &TriMesh, h: f64, hausdorff: bool
         below_20_degrees: smallest.iter().filter(|&&a| a < 20.0).count() as f64 / nf,
         edge_lengths: EdgeLengthStats::of(&geometry::edge_lengths(output), h),
         hausdorff,
+        stitch_splits: 0,
+        smoothing_moves: 0,
         normal_disagreements: 0,
         input_topology,
         output_topology,
@@ -205,4 +216,17 @@ pub fn hausdorff_distance(a: &TriMesh, b: &TriMesh) -> Option<HausdorffDistance>
         input_to_output_relative: rel(input_to_output),
         symmetric_relative: rel(symmetric),
     })
+}
+
+/// The output triangles whose normal points away from the normal of the
+/// input face nearest to their centroid ([`RemeshReport::normal_disagreements`]);
+/// `grid` is over `input`'s faces. O(F x a grid query).
+pub(crate) fn normal_disagreements(output: &TriMesh, input: &TriMesh, grid: &TriangleGrid) -> usize {
+    let count = |f: usize| {
+        let t = output.triangle(FaceId::new(f));
+        let Some((_, g)) = grid.closest((t[0] + t[1] + t[2]) / 3.0) else { return 0 };
+        let n = geometry::triangle_normal(input.triangle(FaceId::new(g)));
+        usize::from(geometry::double_area_vector(t).dot(n) < 0.0)
+    };
+    mesh_kernel::par::map(output.face_count(), count).into_iter().sum()
 }

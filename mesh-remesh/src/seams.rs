@@ -183,6 +183,18 @@ pub(crate) fn sample_seams(
                     segments[k] += 1;
                 }
                 bumped = true;
+            } else if on_loop.len() == 2 {
+                // Two corners: a curve of one segment is the straight chord
+                // between them in the chart's plane, on which the other
+                // curve's samples lie when that curve is one input edge (a
+                // polygon of zero area). Two segments each keep a sample off
+                // the chord (found on a one-face chart of a scan).
+                for k in on_loop {
+                    if segments[k] < 2 {
+                        segments[k] = 2;
+                        bumped = true;
+                    }
+                }
             }
         }
         if !bumped {

@@ -17,12 +17,17 @@ pub struct RawMesh {
 /// and normal indices (`v/vt/vn`) ignored. O(file size).
 ///
 /// # Errors
-/// A message naming the file for an unreadable file, a truncated OFF, or a
-/// token that is not a number or index.
+/// A message naming the file for an unreadable file, another extension, a
+/// truncated OFF, or a token that is not a number or index.
 pub fn read_raw(path: &Path) -> Result<RawMesh, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let off = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("off"));
-    let mesh = if off { parse_off(&text) } else { parse_obj(&text) };
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let mesh = match ext.as_deref() {
+        Some("off") => parse_off(&text),
+        Some("obj") => parse_obj(&text),
+        // Parsing another format as OBJ would give an empty mesh, silently.
+        _ => Err("read_raw reads .obj and .off only (use mesh-io for other formats)".into()),
+    };
     mesh.map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -30,6 +30,10 @@ pub struct Args {
     /// The most output vertices; a smaller edge length is refused before any work.
     #[arg(long, value_name = "N", default_value_t = 4_000_000)]
     max_vertices: usize,
+    /// Rounds of tangential smoothing on the input surface (each two
+    /// iterations and flips); 0 turns it off.
+    #[arg(long, value_name = "N", default_value_t = 3, value_parser = clap::value_parser!(u32).range(0..=100))]
+    smoothing_rounds: u32,
     /// Skip the Hausdorff distance (it costs about as much as the remeshing).
     #[arg(long)]
     no_hausdorff: bool,
@@ -53,6 +57,7 @@ impl Args {
         let mut given = vec![
             ("min_angle", flag("--min-angle", self.min_angle)),
             ("max_vertices", flag("--max-vertices", self.max_vertices)),
+            ("smoothing_rounds", flag("--smoothing-rounds", self.smoothing_rounds)),
         ];
         if let Some(h) = self.edge_length {
             given.push(("edge_length", flag("--edge-length", h)));
@@ -127,6 +132,8 @@ struct Summary {
     seam_vertices: usize,
     flips: usize,
     collapses: usize,
+    stitch_splits: usize,
+    smoothing_moves: usize,
     min_angle_degrees: Option<f64>,
     mean_min_angle_degrees: Option<f64>,
     below_20_degrees: f64,
@@ -156,6 +163,8 @@ fn summarize(input: String, output: String, source: &'static str, r: &RemeshRepo
         seam_vertices: r.seam_vertices,
         flips: r.flips,
         collapses: r.collapses,
+        stitch_splits: r.stitch_splits,
+        smoothing_moves: r.smoothing_moves,
         min_angle_degrees: finite(r.min_angle_degrees),
         mean_min_angle_degrees: finite(r.mean_min_angle_degrees),
         below_20_degrees: r.below_20_degrees,
@@ -200,6 +209,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         edge_length: h,
         min_angle: args.min_angle,
         max_vertices: args.max_vertices,
+        smoothing_rounds: args.smoothing_rounds as usize,
         hausdorff: !args.no_hausdorff,
         ..Default::default()
     };
@@ -215,8 +225,9 @@ pub fn run(args: &Args) -> CliResult<()> {
     }
     if s.normal_disagreements > 0 {
         eprintln!(
-            "mesh: warning: {} output faces point away from the input's normal (folded across a sharp feature)",
-            s.normal_disagreements
+            "mesh: warning: {} of {} output faces point away from the normal of the nearest input face (a fold of \
+             the output, a sharp fold of the input, or a thin part)",
+            s.normal_disagreements, s.faces
         );
     }
     if s.topology_changed {
