@@ -158,22 +158,74 @@ impl TriangleParts {
     #[inline]
     pub fn angles(&self) -> [f64; 3] {
         let len2 = self.len2;
-        let m = if len2[0] >= len2[1] && len2[0] >= len2[2] {
-            0
-        } else if len2[1] >= len2[2] {
-            1
-        } else {
-            2
-        };
-        let angle = |k: usize| self.double_area.atan2(self.corner_dot(k));
-        let (k0, k1, k2) = (m, (m + 1) % 3, (m + 2) % 3);
-        let (a0, a1) = (angle(k0), angle(k1));
+        // The longest edge, first of equals, without a branch: the edges
+        // of a mesh come in no order the branch predictor could learn.
+        let not_first = usize::from(!(len2[0] >= len2[1] && len2[0] >= len2[2]));
+        let m = not_first * (1 + usize::from(len2[1] < len2[2]));
+        const NEXT: [usize; 5] = [0, 1, 2, 0, 1];
+        let (k0, k1, k2) = (m, NEXT[m + 1], NEXT[m + 2]);
+        let dots = [0, 1, 2].map(|k| self.corner_dot(k));
+        let (a0, a1) = (atan2_upper(self.double_area, dots[k0]), atan2_upper(self.double_area, dots[k1]));
         let mut out = [0.0; 3];
         out[k0] = a0;
         out[k1] = a1;
         out[k2] = std::f64::consts::PI - a0 - a1;
         out
     }
+}
+
+/// `y.atan2(x)` for `y >= 0`, within 2 ulps of it and about twice as fast
+/// (no call, no branch on the octant), for the corner angles of
+/// [`TriangleParts::angles`]. For `x > 0` and `y > 0` the angle in
+/// `(0, pi/2)` is reduced by a rotation of 0, pi/4 or pi/2 (chosen by
+/// comparing `y` with `x tan(pi/8)` and `x` with `y tan(pi/8)`) to
+/// `atan(u)` with `|u| <= tan(pi/8)`, `u = (a y - b x) / (a x + b y)` with
+/// `(a, b)` one of `(1, 0)`, `(1, 1)`, `(0, 1)`, so that `u` is one
+/// correctly rounded division of exact or once-rounded terms; `atan(u) = u
+/// + u s P(s)`, `s = u^2`, with `P` of degree 10 fitted to
+/// `(atan(sqrt s) / sqrt s - 1) / s` on `[0, tan^2(pi/8)]` at Chebyshev
+/// nodes (error 7e-18 relative to `u`, below half an ulp), evaluated by
+/// Estrin's scheme; the rotation is added back as `pi/4` or `pi/2` in two
+/// parts. Every other input (a zero, a negative `x`, NaN) goes to
+/// [`f64::atan2`].
+#[inline]
+pub(crate) fn atan2_upper(y: f64, x: f64) -> f64 {
+    use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+    /// tan(pi/8) rounded.
+    const TAN_PI_8: f64 = 0.414_213_562_373_095_03;
+    /// The rotations' `(a, b)`, and their angles as high and low parts
+    /// (`pi/4 - FRAC_PI_4` and `pi/2 - FRAC_PI_2`).
+    const A: [f64; 3] = [1.0, 1.0, 0.0];
+    const B: [f64; 3] = [0.0, 1.0, 1.0];
+    const HI: [f64; 3] = [0.0, FRAC_PI_4, FRAC_PI_2];
+    const LO: [f64; 3] = [0.0, 3.061_616_997_868_383e-17, 6.123_233_995_736_766e-17];
+    /// `P`, lowest degree first.
+    const P: [f64; 11] = [
+        -0.333_333_333_333_333_3,
+        0.199_999_999_999_955_2,
+        -0.142_857_142_846_665_42,
+        0.111_111_110_152_563_61,
+        -0.090_909_045_781_239_03,
+        0.076_921_831_908_260_87,
+        -0.066_645_114_473_819_48,
+        0.058_581_489_128_022_1,
+        -0.050_854_497_379_402_6,
+        0.039_231_658_295_587_19,
+        -0.019_176_887_119_062_26,
+    ];
+    if !(x > 0.0 && y > 0.0) {
+        return y.atan2(x);
+    }
+    let k = usize::from(y > TAN_PI_8 * x) + usize::from(x < TAN_PI_8 * y);
+    let (a, b) = (A[k], B[k]);
+    let u = (a * y - b * x) / (a * x + b * y);
+    let s = u * u;
+    let (s2, s4) = (s * s, s * s * s * s);
+    let p03 = (P[3] * s + P[2]) * s2 + (P[1] * s + P[0]);
+    let p47 = (P[7] * s + P[6]) * s2 + (P[5] * s + P[4]);
+    let p8a = P[10] * s2 + (P[9] * s + P[8]);
+    let p = (p8a * s4 + p47) * s4 + p03;
+    HI[k] + (u + (u * s * p + LO[k]))
 }
 
 /// The apex of a triangle laid out in the plane from its side lengths: the
@@ -441,6 +493,34 @@ mod tests {
     use super::*;
     use crate::shapes;
     use std::f64::consts::{FRAC_PI_2, PI};
+
+    #[test]
+    fn upper_atan2_is_within_two_ulps_of_the_library_one() {
+        let ulp = |x: f64| f64::from_bits(x.abs().to_bits() + 1) - x.abs();
+        let mut rng = crate::random::SplitMix64::new(5);
+        let mut worst = 0.0f64;
+        let mut check = |y: f64, x: f64| {
+            let (ours, std) = (atan2_upper(y, x), y.atan2(x));
+            worst = worst.max((ours - std).abs() / ulp(std));
+        };
+        for _ in 0..200_000 {
+            // Uniform angles in the first quadrant at radii over 60 decades.
+            let (t, r) = (rng.unit() * FRAC_PI_2, 10f64.powf(60.0 * rng.signed()));
+            check(r * t.sin(), r * t.cos());
+        }
+        // Near the ends and the reduction's break points.
+        for i in 0..20_000 {
+            let d = (i as f64 + 0.5) * 1e-7;
+            for t in [d, FRAC_PI_2 - d, PI / 8.0 + d - 1e-3, PI / 8.0 * 3.0 + d - 1e-3] {
+                check(t.sin(), t.cos());
+            }
+        }
+        assert!(worst <= 2.0, "{worst} ulps");
+        // The rest is the library's, bit for bit.
+        for (y, x) in [(0.0, 0.0), (0.0, -0.0), (0.0, 1.0), (1.0, 0.0), (1.0, -2.0), (0.0, -1.0), (f64::NAN, 1.0)] {
+            assert_eq!(atan2_upper(y, x).to_bits(), y.atan2(x).to_bits(), "({y}, {x})");
+        }
+    }
 
     #[test]
     fn cube_geometry() {
