@@ -8,7 +8,12 @@
 //!
 //! Construction is O(V + F) and sort-based: half-edges are bucketed by their
 //! smaller endpoint with a counting sort, then each (tiny) bucket is sorted by
-//! the larger endpoint, so equal edges become adjacent runs. No hashing.
+//! the larger endpoint, so equal edges become adjacent runs. No hashing. The
+//! passes that meet half-edges in an order other than their own carry what
+//! they need with them (each sorted entry its direction, each ring slot the
+//! next half-edge around the vertex), so that no pass looks up a half-edge
+//! at random: on meshes whose faces do not follow their vertices those
+//! lookups are cache misses.
 
 use std::sync::OnceLock;
 
@@ -76,31 +81,44 @@ impl Connectivity {
     pub fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
         let nh = faces.len() * 3;
         let corner_vertex: Vec<VertexId> = faces.iter().flat_map(|f| f.map(VertexId)).collect();
-        // Each half-edge's endpoints as (smaller, larger), read face by face.
-        let ends: Vec<[u32; 2]> = faces
-            .iter()
-            .flat_map(|f| [0, 1, 2].map(|k| [f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3])]))
-            .collect();
+        // Each half-edge's endpoints as (smaller, larger) and whether it
+        // starts at the smaller, read face by face (twice, rather than kept).
+        let ends = |f: &[u32; 3], k: usize| {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            (a.min(b), a.max(b), a < b)
+        };
 
         // Counting sort of half-edges by their smaller endpoint; each entry
-        // packs (larger endpoint, half-edge) into one u64, so that sorting a
-        // bucket by it orders the bucket's edges with no further lookup.
+        // packs (larger endpoint, half-edge, starts at the smaller) into one
+        // u64, so that sorting a bucket by it orders the bucket's edges, and
+        // the orientation of a pair is known, with no further lookup. (Past
+        // 2^31 half-edges the direction bit does not fit: it is read from
+        // the corners instead.)
+        let packed = nh < 1 << 31;
         let mut bucket_offsets = vec![0u32; vertex_count + 1];
-        for &[lo, _] in &ends {
-            bucket_offsets[lo as usize + 1] += 1;
+        for f in faces {
+            for k in 0..3 {
+                bucket_offsets[ends(f, k).0 as usize + 1] += 1;
+            }
         }
         for v in 0..vertex_count {
             bucket_offsets[v + 1] += bucket_offsets[v];
         }
         let mut fill = bucket_offsets.clone();
         let mut sorted = vec![0u64; nh];
-        for (h, &[lo, hi]) in ends.iter().enumerate() {
-            sorted[fill[lo as usize] as usize] = (u64::from(hi) << 32) | h as u64;
-            fill[lo as usize] += 1;
+        for (f, tri) in faces.iter().enumerate() {
+            for k in 0..3 {
+                let (lo, hi, up) = ends(tri, k);
+                let h = (3 * f + k) as u64;
+                let low = if packed { (h << 1) | u64::from(up) } else { h };
+                sorted[fill[lo as usize] as usize] = (u64::from(hi) << 32) | low;
+                fill[lo as usize] += 1;
+            }
         }
         drop(fill);
-        drop(ends);
-        let (hi_of, h_of) = (|x: u64| (x >> 32) as u32, |x: u64| HalfedgeId(x as u32));
+        let hi_of = |x: u64| (x >> 32) as u32;
+        let h_of = |x: u64| HalfedgeId(if packed { (x as u32) >> 1 } else { x as u32 });
+        let starts_low = |x: u64, lo: usize| if packed { x & 1 == 1 } else { corner_vertex[h_of(x).idx()].idx() == lo };
 
         // Runs of equal larger endpoint in a sorted bucket are edges.
         let mut twin = vec![HalfedgeId::INVALID; nh];
@@ -111,7 +129,10 @@ impl Connectivity {
         for lo in 0..vertex_count {
             let bucket_end = bucket_offsets[lo + 1] as usize;
             let mut start = bucket_offsets[lo] as usize;
-            sorted[start..bucket_end].sort_unstable();
+            let bucket = &mut sorted[start..bucket_end];
+            if bucket.len() > 1 {
+                bucket.sort_unstable();
+            }
             while start < bucket_end {
                 let hi = hi_of(sorted[start]);
                 let mut end = start + 1;
@@ -127,8 +148,9 @@ impl Connectivity {
                 match end - start {
                     1 => {}
                     2 => {
-                        let (h0, h1) = (h_of(sorted[start]), h_of(sorted[start + 1]));
-                        if corner_vertex[h0.idx()] != corner_vertex[h1.idx()] {
+                        let (x0, x1) = (sorted[start], sorted[start + 1]);
+                        if starts_low(x0, lo) != starts_low(x1, lo) {
+                            let (h0, h1) = (h_of(x0), h_of(x1));
                             twin[h0.idx()] = h1;
                             twin[h1.idx()] = h0;
                         } else {
@@ -144,7 +166,10 @@ impl Connectivity {
         edge_offsets.push(nh as u32);
         let edge_halfedges: Vec<HalfedgeId> = sorted.into_iter().map(h_of).collect();
 
-        // Outgoing half-edges per vertex (CSR), with each half-edge's slot.
+        // Outgoing half-edges per vertex (CSR), each with the half-edge
+        // after it counter-clockwise, twin(prev(h)): read here in face
+        // order (prev(h) is in h's face), so that walking a fan below reads
+        // only its vertex's own slots.
         let mut vertex_offsets = vec![0u32; vertex_count + 1];
         for v in &corner_vertex {
             vertex_offsets[v.idx() + 1] += 1;
@@ -153,13 +178,14 @@ impl Connectivity {
             vertex_offsets[v + 1] += vertex_offsets[v];
         }
         let mut fill = vertex_offsets.clone();
-        let mut vertex_out = vec![HalfedgeId::INVALID; nh];
-        let mut slot_in_ring = vec![0u32; nh];
-        for (h, v) in corner_vertex.iter().enumerate() {
-            let s = fill[v.idx()];
-            vertex_out[s as usize] = HalfedgeId(h as u32);
-            slot_in_ring[h] = s - vertex_offsets[v.idx()];
-            fill[v.idx()] += 1;
+        let mut rings = vec![(HalfedgeId::INVALID, HalfedgeId::INVALID); nh];
+        for (f, tri) in faces.iter().enumerate() {
+            let face_twins = &twin[3 * f..3 * f + 3];
+            for k in 0..3 {
+                let v = tri[k] as usize;
+                rings[fill[v] as usize] = (HalfedgeId((3 * f + k) as u32), face_twins[(k + 2) % 3]);
+                fill[v] += 1;
+            }
         }
         drop(fill);
 
@@ -178,31 +204,37 @@ impl Connectivity {
         }
 
         // Classify each vertex by its fans and order manifold rings counter-clockwise.
+        let mut vertex_out = vec![HalfedgeId::INVALID; nh];
         let mut vertex_kind = vec![VertexKind::Isolated; vertex_count];
         let mut fans_of = UnionFind::new(0);
         let mut ordered: Vec<HalfedgeId> = Vec::new();
+        let mut index = RingIndex::default();
         for v in 0..vertex_count {
             let range = vertex_offsets[v] as usize..vertex_offsets[v + 1] as usize;
-            let ring = &vertex_out[range.clone()];
+            let ring = &rings[range.clone()];
             let d = ring.len();
             if d == 0 {
                 continue;
             }
+            index.build(ring);
             // Fast path, almost every vertex: a consistently oriented single
             // fan, walked counter-clockwise by h -> twin(prev(h)) from its
             // boundary half-edge (no twin) if it has one.
             if !nonmanifold_edge_vertex[v] && !unoriented_vertex[v] {
-                if let Some(kind) = walk_fan(ring, &twin, &mut ordered) {
+                if let Some(kind) = walk_fan(ring, &index, &mut ordered) {
                     vertex_kind[v] = kind;
                     vertex_out[range].copy_from_slice(&ordered);
                     continue;
                 }
             }
+            for (slot, &(h, _)) in vertex_out[range].iter_mut().zip(ring) {
+                *slot = h;
+            }
             // Otherwise union the incident faces across edges at v that have
             // exactly two faces, and count the fans.
             fans_of.reset(d);
             let mut on_boundary = false;
-            for (i, &h) in ring.iter().enumerate() {
+            for (i, &(h, _)) in ring.iter().enumerate() {
                 for g in [h, h.prev()] {
                     let e = halfedge_edge[g.idx()];
                     match edge_size(e) {
@@ -212,7 +244,9 @@ impl Connectivity {
                             let other = if pair[0] == g { pair[1] } else { pair[0] };
                             // The other face's half-edge leaving v.
                             let out = if corner_vertex[other.idx()].idx() == v { other } else { other.next() };
-                            fans_of.union(i as u32, slot_in_ring[out.idx()]);
+                            if let Some(j) = index.position(ring, out) {
+                                fans_of.union(i as u32, j as u32);
+                            }
                         }
                         _ => {}
                     }
@@ -230,6 +264,7 @@ impl Connectivity {
                 VertexKind::Interior
             };
         }
+        drop(rings);
 
         Self {
             corner_vertex,
@@ -523,30 +558,80 @@ impl Connectivity {
     }
 }
 
+/// Finds a half-edge's slot in a vertex's ring: by a linear scan in small
+/// rings, by binary search in a sorted copy in large ones (so that a vertex
+/// of valence `d` costs O(d log d), not O(d^2)).
+#[derive(Default)]
+struct RingIndex {
+    /// `(half-edge, slot)` sorted, for rings above [`RingIndex::SCAN`].
+    sorted: Vec<(HalfedgeId, u32)>,
+    /// Every `twin(prev(h))` of the ring sorted, likewise.
+    targets: Vec<HalfedgeId>,
+}
+
+impl RingIndex {
+    /// Rings up to this size are scanned.
+    const SCAN: usize = 16;
+
+    fn build(&mut self, ring: &[(HalfedgeId, HalfedgeId)]) {
+        if ring.len() > Self::SCAN {
+            self.sorted.clear();
+            self.sorted.extend(ring.iter().enumerate().map(|(i, &(h, _))| (h, i as u32)));
+            self.sorted.sort_unstable();
+            self.targets.clear();
+            self.targets.extend(ring.iter().map(|&(_, t)| t));
+            self.targets.sort_unstable();
+        }
+    }
+
+    /// Whether some `twin(prev(g))` of `ring` is `h`.
+    #[inline]
+    fn is_target(&self, ring: &[(HalfedgeId, HalfedgeId)], h: HalfedgeId) -> bool {
+        if ring.len() <= Self::SCAN {
+            ring.iter().any(|&(_, t)| t == h)
+        } else {
+            self.targets.binary_search(&h).is_ok()
+        }
+    }
+
+    /// The slot of `h` in `ring` (the ring [`RingIndex::build`] saw last).
+    #[inline]
+    fn position(&self, ring: &[(HalfedgeId, HalfedgeId)], h: HalfedgeId) -> Option<usize> {
+        if ring.len() <= Self::SCAN {
+            ring.iter().position(|&(g, _)| g == h)
+        } else {
+            let i = self.sorted.binary_search_by_key(&h, |&(g, _)| g).ok()?;
+            Some(self.sorted[i].1 as usize)
+        }
+    }
+}
+
 /// The ring of a vertex none of whose edges is non-manifold or inconsistently
-/// oriented, in counter-clockwise order into `ordered`, when its faces form
-/// one fan: from the outgoing half-edge without twin (an open fan) or from
-/// `ring[0]` (a closed fan), rotating h -> twin(prev(h)). The vertex's kind,
-/// or `None` when the walk does not visit the whole ring (several fans).
-fn walk_fan(ring: &[HalfedgeId], twin: &[HalfedgeId], ordered: &mut Vec<HalfedgeId>) -> Option<VertexKind> {
-    let open = ring.iter().copied().find(|h| !twin[h.idx()].is_valid());
-    let first = open.unwrap_or(ring[0]);
+/// oriented, each outgoing half-edge `h` with `twin(prev(h))`, in
+/// counter-clockwise order into `ordered`, when its faces form one fan:
+/// from the first outgoing half-edge without twin (an open fan; on such a
+/// vertex, the one no `twin(prev(g))` of the ring names) or from `ring[0]`
+/// (a closed fan), rotating h -> twin(prev(h)). The vertex's kind, or `None`
+/// when the walk does not visit the whole ring (several fans).
+fn walk_fan(ring: &[(HalfedgeId, HalfedgeId)], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) -> Option<VertexKind> {
+    let open = ring.iter().position(|&(h, _)| !index.is_target(ring, h));
+    let first = open.unwrap_or(0);
     ordered.clear();
-    let mut h = first;
+    let mut i = first;
     loop {
-        ordered.push(h);
-        let t = twin[h.prev().idx()];
+        ordered.push(ring[i].0);
+        let t = ring[i].1;
         let whole = ordered.len() == ring.len();
         if !t.is_valid() {
             return (open.is_some() && whole).then_some(VertexKind::Boundary);
         }
-        if t == first {
+        if t == ring[first].0 {
             return (open.is_none() && whole).then_some(VertexKind::Interior);
         }
         if whole {
             return None;
         }
-        h = t;
+        i = index.position(ring, t)?;
     }
 }
 
@@ -625,6 +710,128 @@ mod tests {
         assert_eq!(c.non_manifold_report().inconsistent_edges, vec![EdgeId(1)]);
         assert!(c.non_manifold_report().vertices.is_empty());
         assert!(c.non_manifold_report().edges.is_empty());
+    }
+
+    /// Everything `Connectivity::new` derives, from a plain reading of the
+    /// definitions (a map from edges to half-edges, fans by union-find over
+    /// all faces at a vertex), on manifold shapes, on the same with faces
+    /// removed, flipped or repeated, with fans of more faces than
+    /// `RingIndex::SCAN`, and on random soups.
+    #[test]
+    fn agrees_with_the_definitions() {
+        use std::collections::BTreeMap;
+        let mut rng = crate::random::SplitMix64::new(11);
+        let mut cases: Vec<(usize, Vec<[u32; 3]>)> = Vec::new();
+        for m in [crate::shapes::icosphere(2).unwrap(), crate::shapes::disk(4, 1).unwrap()] {
+            cases.push((m.vertex_count(), m.faces().to_vec()));
+            for _ in 0..6 {
+                let mut faces = m.faces().to_vec();
+                for _ in 0..1 + rng.below(8) {
+                    let f = rng.below(faces.len());
+                    match rng.below(4) {
+                        0 => drop(faces.swap_remove(f)),
+                        1 => faces[f].swap(0, 1),
+                        2 => faces.push(faces[f]),
+                        _ => faces.push([faces[f][0], faces[f][1], rng.below(m.vertex_count()) as u32]),
+                    }
+                }
+                faces.retain(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2]);
+                cases.push((m.vertex_count(), faces));
+            }
+        }
+        // A closed cone of 40 faces, an open one, both glued at the apex, and
+        // the closed one with a face flipped.
+        let cone = |apex: u32, base: u32, n: u32, open: bool| -> Vec<[u32; 3]> {
+            (0..n - u32::from(open)).map(|i| [apex, base + i, base + (i + 1) % n]).collect()
+        };
+        cases.push((41, cone(0, 1, 40, false)));
+        cases.push((41, cone(0, 1, 40, true)));
+        cases.push((81, [cone(0, 1, 40, false), cone(0, 41, 40, true)].concat()));
+        let mut flipped = cone(0, 1, 40, false);
+        flipped[7].swap(1, 2);
+        cases.push((41, flipped));
+        for _ in 0..40 {
+            let n = 4 + rng.below(12);
+            let faces = (0..1 + rng.below(3 * n))
+                .map(|_| {
+                    let a = rng.below(n) as u32;
+                    let b = (a + 1 + rng.below(n - 1) as u32) % n as u32;
+                    let mut c = rng.below(n) as u32;
+                    while c == a || c == b {
+                        c = (c + 1) % n as u32;
+                    }
+                    [a, b, c]
+                })
+                .collect();
+            cases.push((n + rng.below(2), faces));
+        }
+        for (n, faces) in &cases {
+            let c = conn(*n, faces);
+            let mut by_edge: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
+            for (h, f) in faces.iter().flat_map(|f| [0, 1, 2].map(|k| [f[k], f[(k + 1) % 3]])).enumerate() {
+                by_edge.entry((f[0].min(f[1]), f[0].max(f[1]))).or_default().push(h as u32);
+            }
+            let origin = |h: u32| faces[h as usize / 3][h as usize % 3];
+            let mut report = NonManifoldReport::default();
+            assert_eq!(c.edge_count(), by_edge.len());
+            for (e, (&(a, b), hs)) in by_edge.iter().enumerate() {
+                let e = EdgeId::new(e);
+                assert_eq!(c.edge_vertices(e), [VertexId(a), VertexId(b)]);
+                assert_eq!(c.edge_halfedges(e), &hs.iter().map(|&h| HalfedgeId(h)).collect::<Vec<_>>()[..]);
+                let twins = hs.len() == 2 && origin(hs[0]) != origin(hs[1]);
+                for (i, &h) in hs.iter().enumerate() {
+                    assert_eq!(c.edge(HalfedgeId(h)), e);
+                    assert_eq!(c.twin(HalfedgeId(h)), twins.then(|| HalfedgeId(hs[1 - i])));
+                }
+                match hs.len() {
+                    1 => {}
+                    2 if twins => {}
+                    2 => report.inconsistent_edges.push(e),
+                    _ => report.edges.push(e),
+                }
+            }
+            for v in 0..*n as u32 {
+                let out: Vec<u32> = (0..3 * faces.len() as u32).filter(|&h| origin(h) == v).collect();
+                let mut got: Vec<u32> = c.outgoing(VertexId(v)).iter().map(|h| h.0).collect();
+                let kind = c.vertex_kind(VertexId(v));
+                if matches!(kind, VertexKind::Interior | VertexKind::Boundary) && c.is_manifold() {
+                    // Counter-clockwise: each next one is twin(prev(h)).
+                    for w in got.windows(2) {
+                        assert_eq!(c.twin(HalfedgeId(w[0]).prev()), Some(HalfedgeId(w[1])), "vertex {v}");
+                    }
+                }
+                got.sort_unstable();
+                assert_eq!(got, out, "vertex {v}");
+                // Fans: faces at v joined across their edges at v with two faces.
+                let mut fans = UnionFind::new(out.len());
+                let (mut boundary, mut bad_edge) = (false, false);
+                for (i, &h) in out.iter().enumerate() {
+                    for g in [h, HalfedgeId(h).prev().0] {
+                        let (a, b) = (origin(g), origin(HalfedgeId(g).next().0));
+                        let hs = &by_edge[&(a.min(b), a.max(b))];
+                        boundary |= hs.len() == 1;
+                        bad_edge |= hs.len() > 2;
+                        if hs.len() == 2 {
+                            let other = if hs[0] == g { hs[1] } else { hs[0] };
+                            let other_out = if origin(other) == v { other } else { HalfedgeId(other).next().0 };
+                            fans.union(i as u32, out.iter().position(|&x| x == other_out).unwrap() as u32);
+                        }
+                    }
+                }
+                let count = (0..out.len() as u32).filter(|&i| fans.find(i) == i).count();
+                let expect = match (out.len(), count > 1 || bad_edge, boundary) {
+                    (0, _, _) => VertexKind::Isolated,
+                    (_, true, _) => VertexKind::NonManifold,
+                    (_, false, true) => VertexKind::Boundary,
+                    _ => VertexKind::Interior,
+                };
+                assert_eq!(kind, expect, "vertex {v} of {faces:?}");
+                if count > 1 && !bad_edge {
+                    report.vertices.push(VertexId(v));
+                }
+            }
+            assert_eq!(c.non_manifold_report(), &report);
+        }
     }
 
     #[test]
