@@ -240,6 +240,22 @@ fn a_user_triangulation_is_flipped_too() {
     assert_eq!(canonical(&flipped.triangles), canonical(&delaunay(&p).expect("valid").triangles));
 }
 
+/// Three points collinear up to rounding ((432, 686), (480, 530), (516, 413)
+/// scaled by 1e-3) and a fourth: the sweep makes a sliver of the three, and
+/// the edge to flip it away has a quad that is convex only by rounding.
+/// The flips leave it and say so (found by the proptest below).
+#[test]
+fn an_edge_left_by_rounding_is_flagged() {
+    let p: Vec<DVec2> = [(480, 530), (432, 686), (516, 413), (680, 0)]
+        .iter()
+        .map(|&(x, y)| DVec2::new(x as f64, y as f64) * 1e-3)
+        .collect();
+    let sweep = sweep_triangulation(&p).unwrap();
+    let f = lawson_flips(&p, &sweep, &LawsonOptions::default()).unwrap();
+    let check = check_empty_circumcircles(&p, &f.triangles, 1e-9).unwrap();
+    assert_eq!(check.is_delaunay(), f.unflippable == 0, "{check:?} {f:?}");
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
@@ -254,7 +270,11 @@ proptest! {
             (Ok(d), Ok(sweep)) => {
                 let f = lawson_flips(&p, &sweep, &LawsonOptions::default()).expect("the sweep is valid");
                 prop_assert_eq!(f.triangles.len(), d.triangles.len());
-                prop_assert!(check_empty_circumcircles(&p, &f.triangles, 1e-9).expect("valid").is_delaunay());
+                // Delaunay, or flagged: an edge left because its quad is not
+                // strictly convex in floating point (three points collinear
+                // up to rounding, see the test below).
+                let ok = check_empty_circumcircles(&p, &f.triangles, 1e-9).expect("valid").is_delaunay();
+                prop_assert!(ok || f.unflippable > 0);
                 prop_assert!(check_empty_circumcircles(&p, &d.triangles, 1e-9).expect("valid").is_delaunay());
             }
             (Err(a), Err(b)) => prop_assert_eq!(a, b),
