@@ -174,6 +174,26 @@ impl TriangleParts {
     }
 }
 
+/// tan(pi/8) rounded, where [`atan2_upper`] changes its rotation.
+pub(crate) const TAN_PI_8: f64 = 0.414_213_562_373_095_03;
+/// `pi/4 - FRAC_PI_4` and `pi/2 - FRAC_PI_2`: the low parts of the rotations.
+pub(crate) const PI_4_LO: f64 = 3.061_616_997_868_383e-17;
+pub(crate) const PI_2_LO: f64 = 6.123_233_995_736_766e-17;
+/// The polynomial `P` of [`atan2_upper`], lowest degree first.
+pub(crate) const ATAN_P: [f64; 11] = [
+    -0.333_333_333_333_333_3,
+    0.199_999_999_999_955_2,
+    -0.142_857_142_846_665_42,
+    0.111_111_110_152_563_61,
+    -0.090_909_045_781_239_03,
+    0.076_921_831_908_260_87,
+    -0.066_645_114_473_819_48,
+    0.058_581_489_128_022_1,
+    -0.050_854_497_379_402_6,
+    0.039_231_658_295_587_19,
+    -0.019_176_887_119_062_26,
+];
+
 /// `y.atan2(x)` for `y >= 0`, within 2 ulps of it and about twice as fast
 /// (no call, no branch on the octant), for the corner angles of
 /// [`TriangleParts::angles`]. For `x > 0` and `y > 0` the angle in
@@ -191,28 +211,13 @@ impl TriangleParts {
 #[inline]
 pub(crate) fn atan2_upper(y: f64, x: f64) -> f64 {
     use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
-    /// tan(pi/8) rounded.
-    const TAN_PI_8: f64 = 0.414_213_562_373_095_03;
     /// The rotations' `(a, b)`, and their angles as high and low parts
     /// (`pi/4 - FRAC_PI_4` and `pi/2 - FRAC_PI_2`).
     const A: [f64; 3] = [1.0, 1.0, 0.0];
     const B: [f64; 3] = [0.0, 1.0, 1.0];
     const HI: [f64; 3] = [0.0, FRAC_PI_4, FRAC_PI_2];
-    const LO: [f64; 3] = [0.0, 3.061_616_997_868_383e-17, 6.123_233_995_736_766e-17];
-    /// `P`, lowest degree first.
-    const P: [f64; 11] = [
-        -0.333_333_333_333_333_3,
-        0.199_999_999_999_955_2,
-        -0.142_857_142_846_665_42,
-        0.111_111_110_152_563_61,
-        -0.090_909_045_781_239_03,
-        0.076_921_831_908_260_87,
-        -0.066_645_114_473_819_48,
-        0.058_581_489_128_022_1,
-        -0.050_854_497_379_402_6,
-        0.039_231_658_295_587_19,
-        -0.019_176_887_119_062_26,
-    ];
+    const LO: [f64; 3] = [0.0, PI_4_LO, PI_2_LO];
+    const P: [f64; 11] = ATAN_P;
     if !(x > 0.0 && y > 0.0) {
         return y.atan2(x);
     }

@@ -95,16 +95,42 @@ where
     A: Clone + Send + Sync,
     V: Copy + Send,
 {
+    scatter_batched::<A, V, 1>(n, faces, init, |f| [values(f)], add)
+}
+
+/// [`scatter`] with the values of `B` consecutive faces at a time:
+/// `values(first)` gives those of faces `first..first + B` (entries past
+/// the last face are ignored), for kernels that are faster on a batch
+/// ([`crate::operators::corner_angles_and_masses_batch`]). Batches start at
+/// the first face of each chunk and every `B` faces after it; the sums are
+/// added in the same order as [`scatter`]'s.
+pub fn scatter_batched<A, V, const B: usize>(
+    n: usize,
+    faces: &[[u32; 3]],
+    init: A,
+    values: impl Fn(usize) -> [[V; 3]; B] + Sync + Send,
+    add: impl Fn(&mut A, V) + Sync + Send,
+) -> Vec<A>
+where
+    A: Clone + Send + Sync,
+    V: Copy + Send,
+{
+    // Faces `lo..hi` batch by batch, each value to `sink(vertex, value)`.
+    let each = |lo: usize, hi: usize, sink: &mut dyn FnMut(u32, V)| {
+        for first in (lo..hi).step_by(B.max(1)) {
+            let x = values(first);
+            for (tri, x) in faces[first..hi.min(first + B)].iter().zip(x) {
+                for k in 0..3 {
+                    sink(tri[k], x[k]);
+                }
+            }
+        }
+    };
     let mut out = vec![init; n];
     let chunks = faces.len().div_ceil(SCATTER_CHUNK);
     let bounds = if chunks > 1 { vertex_ranges(n, faces, chunks) } else { Vec::new() };
     if chunks <= 1 || !mostly_owned(faces, &bounds) {
-        for (f, tri) in faces.iter().enumerate() {
-            let x = values(f);
-            for k in 0..3 {
-                add(&mut out[tri[k] as usize], x[k]);
-            }
-        }
+        each(0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
         return out;
     }
     let mut owned = Vec::with_capacity(chunks);
@@ -117,15 +143,12 @@ where
     let chunk = |(c, range): (usize, &mut [A])| {
         let (lo, first) = (bounds[c], c * SCATTER_CHUNK);
         let mut aside = Vec::with_capacity(SCATTER_CHUNK / 2);
-        for (i, tri) in faces[first..faces.len().min(first + SCATTER_CHUNK)].iter().enumerate() {
-            let x = values(first + i);
-            for k in 0..3 {
-                match range.get_mut((tri[k] as usize).wrapping_sub(lo)) {
-                    Some(slot) => add(slot, x[k]),
-                    None => aside.push((tri[k], x[k])),
-                }
-            }
-        }
+        each(first, faces.len().min(first + SCATTER_CHUNK), &mut |v, x| match range
+            .get_mut((v as usize).wrapping_sub(lo))
+        {
+            Some(slot) => add(slot, x),
+            None => aside.push((v, x)),
+        });
         aside
     };
     #[cfg(feature = "rayon")]

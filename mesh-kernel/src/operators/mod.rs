@@ -11,12 +11,14 @@
 //! `L_ij = -w_ij` (geometry-central's convention; libigl's `cotmatrix` is `-L`).
 //! All assembly works on non-manifold input: it only needs triangles.
 
+mod corner_batch;
 pub mod gradient;
 pub mod intrinsic;
 pub mod laplacian;
 pub mod mass;
 mod pattern;
 
+pub use corner_batch::{corner_angles_and_masses_batch, CornerBatch, CORNER_BATCH};
 pub use gradient::{divergence, gradient};
 pub use intrinsic::{cotan_from_lengths, is_delaunay_edge, IntrinsicOptions, IntrinsicTriangulation};
 pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans, LaplacianKind};

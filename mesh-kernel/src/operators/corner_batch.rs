@@ -1,0 +1,271 @@
+//! Corner angles and corner areas of [`CORNER_BATCH`] faces at a time, bit
+//! for bit those of [`corner_angles_and_masses`], for single passes over
+//! the faces such as the angle defect's ([`crate::par::scatter_batched`]).
+//!
+//! One face at a time, the work is a chain of dependent latencies (edge
+//! vectors, cross product, square root, two divisions and a polynomial for
+//! each `atan2`, one division for the cotangents) and random reads of the
+//! corner positions, which the processor cannot overlap with the next face:
+//! its instructions do not fit in the reorder window. Here the positions of
+//! all the faces of a batch are read first (their cache misses overlap), then
+//! one loop over the lanes, free of branches, computes every face; with AVX2
+//! (detected at run time) the compiler turns that loop into 4-wide vector
+//! operations. The arithmetic is the scalar one, operation for operation, so
+//! that the results are identical: faces outside its fast path (an edge's
+//! coordinates outside `[1e-60, 1e60]`, a cross product outside
+//! `[1e-150, 1e150]`, a right or obtuse angle at an end of the longest edge,
+//! zero area) are recomputed by `corner_angles_and_masses`.
+
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+use glam::DVec3;
+
+use super::mass::{corner_angles_and_masses, MassKind};
+use crate::geometry::{ATAN_P as P, PI_2_LO, PI_4_LO, TAN_PI_8};
+use crate::TriMesh;
+
+/// Faces per batch.
+pub const CORNER_BATCH: usize = 8;
+const LANES: usize = CORNER_BATCH;
+
+/// Each corner's `(angle, area)`, per face of a batch.
+pub type CornerBatch = [[(f64, f64); 3]; CORNER_BATCH];
+
+/// The corner angles ([`crate::geometry::triangle_angles`]) and `kind`
+/// areas ([`super::corner_masses`]) of `mesh`'s faces `first..` (up to
+/// [`CORNER_BATCH`] of them, fewer at the end) into `out`, bit for bit
+/// those of [`corner_angles_and_masses`] face by face, about twice as fast:
+/// the positions of the batch are read first, then one loop over the
+/// faces without branches, 4-wide where the processor has AVX2. Returns
+/// how many faces were done (0 from `first >= face_count`). O(1).
+pub fn corner_angles_and_masses_batch(mesh: &TriMesh, first: usize, kind: MassKind, out: &mut CornerBatch) -> usize {
+    let faces = mesh.faces();
+    if first >= faces.len() {
+        return 0;
+    }
+    let faces = &faces[first..faces.len().min(first + LANES)];
+    let positions = mesh.positions();
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the processor has AVX2, checked just above.
+        unsafe { batch_avx2(positions, faces, kind, out) };
+        return faces.len();
+    }
+    batch_lanes(positions, faces, kind, out);
+    faces.len()
+}
+
+/// [`batch_lanes`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn batch_avx2(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
+    batch_lanes(positions, faces, kind, out);
+}
+
+/// `if c { a } else { b }`, which the compiler keeps as a select (a vector
+/// blend in the lanes' loop).
+#[inline(always)]
+fn pick(c: bool, a: f64, b: f64) -> f64 {
+    if c {
+        a
+    } else {
+        b
+    }
+}
+
+/// glam's `max` of two coordinates.
+#[inline(always)]
+fn max(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// [`crate::geometry`]'s `atan2_upper` for `x > 0`, `y > 0`, with the rotation
+/// picked by selects instead of a table: `y.atan2(x)` within 2 ulps, by a
+/// rotation of 0, pi/4 or pi/2 to `atan(u)`, `|u| <= tan(pi/8)`, and a
+/// polynomial of degree 10 in `u^2` (see there for the fit).
+#[inline(always)]
+fn atan2_lane(y: f64, x: f64) -> f64 {
+    let (above, steep) = (y > TAN_PI_8 * x, x < TAN_PI_8 * y);
+    let (a, b) = (pick(steep, 0.0, 1.0), pick(above, 1.0, 0.0));
+    let hi = pick(steep, FRAC_PI_2, pick(above, FRAC_PI_4, 0.0));
+    let lo = pick(steep, PI_2_LO, pick(above, PI_4_LO, 0.0));
+    let u = (a * y - b * x) / (a * x + b * y);
+    let s = u * u;
+    let (s2, s4) = (s * s, s * s * s * s);
+    let p03 = (P[3] * s + P[2]) * s2 + (P[1] * s + P[0]);
+    let p47 = (P[7] * s + P[6]) * s2 + (P[5] * s + P[4]);
+    let p8a = P[10] * s2 + (P[9] * s + P[8]);
+    let p = (p8a * s4 + p47) * s4 + p03;
+    hi + (u + (u * s * p + lo))
+}
+
+/// [`corner_angles_and_masses_batch`] on `faces` (1 to [`CORNER_BATCH`],
+/// corners into `positions`), without the dispatch.
+#[inline(always)]
+fn batch_lanes(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
+    let n = faces.len();
+    debug_assert!((1..=LANES).contains(&n));
+    // Coordinates by corner and axis, lane by lane; a short batch repeats
+    // its last face.
+    let mut p = [[0.0f64; LANES]; 9];
+    for i in 0..LANES {
+        let face = faces[i.min(n - 1)];
+        for (k, &v) in face.iter().enumerate() {
+            let q = positions[v as usize];
+            (p[3 * k][i], p[3 * k + 1][i], p[3 * k + 2][i]) = (q.x, q.y, q.z);
+        }
+    }
+    let voronoi = kind == MassKind::MixedVoronoi;
+    let mut angle = [[0.0f64; LANES]; 3];
+    let mut area = [[0.0f64; LANES]; 3];
+    let mut fast = [false; LANES];
+    for i in 0..LANES {
+        let (ax, ay, az) = (p[0][i], p[1][i], p[2][i]);
+        let (bx, by, bz) = (p[3][i], p[4][i], p[5][i]);
+        let (cx, cy, cz) = (p[6][i], p[7][i], p[8][i]);
+        // Edge k from corner k to k + 1, as in TriangleParts.
+        let (e0x, e0y, e0z) = (bx - ax, by - ay, bz - az);
+        let (e1x, e1y, e1z) = (cx - bx, cy - by, cz - bz);
+        let (e2x, e2y, e2z) = (ax - cx, ay - cy, az - cz);
+        // triangle_in_own_unit's size: max |b - a|, |c - a|.
+        let (fx, fy, fz) = ((cx - ax).abs(), (cy - ay).abs(), (cz - az).abs());
+        let size = max(max(e0x.abs(), fx), max(max(e0y.abs(), fy), max(e0z.abs(), fz)));
+        let l0 = (e0x * e0x) + (e0y * e0y) + (e0z * e0z);
+        let l1 = (e1x * e1x) + (e1y * e1y) + (e1z * e1z);
+        let l2 = (e2x * e2x) + (e2y * e2y) + (e2z * e2z);
+        // e0 x e2 and its length (norm's fast path).
+        let (nx, ny, nz) = (e0y * e2z - e2y * e0z, e0z * e2x - e2z * e0x, e0x * e2y - e2x * e0y);
+        let cross_size = max(nx.abs(), max(ny.abs(), nz.abs()));
+        let double_area = ((nx * nx) + (ny * ny) + (nz * nz)).sqrt();
+        // The dot product of the two edges at each corner.
+        let d0 = -((e0x * e2x) + (e0y * e2y) + (e0z * e2z));
+        let d1 = -((e1x * e0x) + (e1y * e0y) + (e1z * e0z));
+        let d2 = -((e2x * e1x) + (e2y * e1y) + (e2z * e1z));
+        // The ends of the longest edge m (first of equals) are corners m
+        // and m + 1; the third angle is pi minus theirs.
+        let first = l0 >= l1 && l0 >= l2;
+        let second = !first && l1 >= l2;
+        let x0 = pick(first, d0, pick(second, d1, d2));
+        let x1 = pick(first, d1, pick(second, d2, d0));
+        let (a0, a1) = (atan2_lane(double_area, x0), atan2_lane(double_area, x1));
+        let a2 = PI - a0 - a1;
+        angle[0][i] = pick(first, a0, pick(second, a2, a1));
+        angle[1][i] = pick(first, a1, pick(second, a0, a2));
+        angle[2][i] = pick(first, a2, pick(second, a1, a0));
+        // Areas: mixed Voronoi (the Voronoi shares unless a corner is
+        // obtuse, then half the area there and a quarter at the others) or
+        // a third of the area.
+        let half = 0.5 * double_area;
+        let inv = 1.0 / (2.0 * half);
+        let (cot0, cot1, cot2) = (d0 * inv, d1 * inv, d2 * inv);
+        let v0 = (l0 * cot2 + l2 * cot1) / 8.0;
+        let v1 = (l1 * cot0 + l0 * cot2) / 8.0;
+        let v2 = (l2 * cot1 + l1 * cot0) / 8.0;
+        let (quarter, obtuse_share) = (half / 4.0, half / 2.0);
+        let o0 = d0 < 0.0;
+        let o1 = d1 < 0.0 && !o0;
+        let o2 = d2 < 0.0 && !o0 && !o1;
+        let obtuse = o0 || o1 || o2;
+        let third = half / 3.0;
+        let s0 = pick(obtuse, pick(o0, obtuse_share, quarter), v0);
+        let s1 = pick(obtuse, pick(o1, obtuse_share, quarter), v1);
+        let s2 = pick(obtuse, pick(o2, obtuse_share, quarter), v2);
+        // (corner_masses maps a zero share to +0.) Written out corner by
+        // corner: a loop over the corners here keeps the compiler from
+        // vectorizing the loop over the lanes.
+        area[0][i] = pick(voronoi, pick(s0 == 0.0, 0.0, s0), third);
+        area[1][i] = pick(voronoi, pick(s1 == 0.0, 0.0, s1), third);
+        area[2][i] = pick(voronoi, pick(s2 == 0.0, 0.0, s2), third);
+        fast[i] = size > 1e-60 && size < 1e60 && cross_size > 1e-150 && cross_size < 1e150 && x0 > 0.0 && x1 > 0.0;
+    }
+    for i in 0..n {
+        out[i] = if fast[i] {
+            [0, 1, 2].map(|k| (angle[k][i], area[k][i]))
+        } else {
+            let tri = faces[i].map(|v| positions[v as usize]);
+            let (angles, areas) = corner_angles_and_masses(tri, kind);
+            [0, 1, 2].map(|k| (angles[k], areas[k]))
+        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::random::SplitMix64;
+
+    /// Random triangles: well shaped, obtuse, slivers, right angles, zero
+    /// area, repeated points, tiny and huge, so that both the fast path and
+    /// every fallback run.
+    fn triangles(seed: u64, count: usize) -> Vec<[DVec3; 3]> {
+        let mut rng = SplitMix64::new(seed);
+        let mut out = Vec::with_capacity(count);
+        let v = |rng: &mut SplitMix64| DVec3::new(rng.signed(), rng.signed(), rng.signed());
+        while out.len() < count {
+            let (a, b) = (v(&mut rng), v(&mut rng));
+            let c = match rng.below(6) {
+                0 => a + (b - a) * rng.unit() + v(&mut rng) * 1e-9, // sliver
+                1 => a + (b - a) * rng.unit(),                      // collinear
+                2 => a,                                             // repeated point
+                3 => {
+                    // A right angle at a.
+                    let e = b - a;
+                    a + e.any_orthonormal_vector() * rng.unit()
+                }
+                _ => v(&mut rng),
+            };
+            let scale = match rng.below(8) {
+                0 => 1e-70,
+                1 => 1e70,
+                2 => 1e-140,
+                _ => 1.0 + rng.unit(),
+            };
+            out.push([a * scale, b * scale, c * scale]);
+        }
+        out
+    }
+
+    fn check(run: impl Fn(&[DVec3], &[[u32; 3]], MassKind, &mut CornerBatch)) {
+        for kind in MassKind::ALL {
+            for seed in 0..4 {
+                let tris = triangles(seed, 3001);
+                let positions: Vec<DVec3> = tris.iter().flatten().copied().collect();
+                let faces: Vec<[u32; 3]> = (0..tris.len() as u32).map(|f| [3 * f, 3 * f + 1, 3 * f + 2]).collect();
+                let mut out: CornerBatch = [[(0.0, 0.0); 3]; LANES];
+                for (b, chunk) in faces.chunks(LANES).enumerate() {
+                    run(&positions, chunk, kind, &mut out);
+                    for (i, face) in chunk.iter().enumerate() {
+                        let (angles, areas) = corner_angles_and_masses(face.map(|v| positions[v as usize]), kind);
+                        for k in 0..3 {
+                            assert_eq!(
+                                (out[i][k].0.to_bits(), out[i][k].1.to_bits()),
+                                (angles[k].to_bits(), areas[k].to_bits()),
+                                "{kind} face {} corner {k}: {:?}",
+                                b * LANES + i,
+                                tris[b * LANES + i]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn batches_equal_the_scalar_corners_bit_for_bit() {
+        check(batch_lanes);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_avx2_batches_too() {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2, checked just above.
+            check(|p, f, k, o| unsafe { batch_avx2(p, f, k, o) });
+        }
+    }
+}
