@@ -217,20 +217,29 @@ pub(crate) fn atan2_upper(y: f64, x: f64) -> f64 {
     const B: [f64; 3] = [0.0, 1.0, 1.0];
     const HI: [f64; 3] = [0.0, FRAC_PI_4, FRAC_PI_2];
     const LO: [f64; 3] = [0.0, PI_4_LO, PI_2_LO];
-    const P: [f64; 11] = ATAN_P;
     if !(x > 0.0 && y > 0.0) {
         return y.atan2(x);
     }
     let k = usize::from(y > TAN_PI_8 * x) + usize::from(x < TAN_PI_8 * y);
     let (a, b) = (A[k], B[k]);
     let u = (a * y - b * x) / (a * x + b * y);
+    rotated_atan(u, HI[k], LO[k])
+}
+
+/// `hi + lo + atan(u)` for `|u| <= tan(pi/8)`, the last step of
+/// [`atan2_upper`] (and of the corner batches' copy of its reduction):
+/// `atan(u) = u + u s P(s)` by Estrin's scheme, the rotation `hi + lo`
+/// added in two parts.
+#[inline(always)]
+pub(crate) fn rotated_atan(u: f64, hi: f64, lo: f64) -> f64 {
+    const P: [f64; 11] = ATAN_P;
     let s = u * u;
     let (s2, s4) = (s * s, s * s * s * s);
     let p03 = (P[3] * s + P[2]) * s2 + (P[1] * s + P[0]);
     let p47 = (P[7] * s + P[6]) * s2 + (P[5] * s + P[4]);
     let p8a = P[10] * s2 + (P[9] * s + P[8]);
     let p = (p8a * s4 + p47) * s4 + p03;
-    HI[k] + (u + (u * s * p + LO[k]))
+    hi + (u + (u * s * p + lo))
 }
 
 /// The apex of a triangle laid out in the plane from its side lengths: the

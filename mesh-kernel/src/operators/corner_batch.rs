@@ -21,7 +21,7 @@ use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use glam::DVec3;
 
 use super::mass::{corner_angles_and_masses, MassKind};
-use crate::geometry::{ATAN_P as P, PI_2_LO, PI_4_LO, TAN_PI_8};
+use crate::geometry::{rotated_atan, PI_2_LO, PI_4_LO, TAN_PI_8};
 use crate::TriMesh;
 
 /// Faces per batch.
@@ -94,13 +94,7 @@ fn atan2_lane(y: f64, x: f64) -> f64 {
     let hi = pick(steep, FRAC_PI_2, pick(above, FRAC_PI_4, 0.0));
     let lo = pick(steep, PI_2_LO, pick(above, PI_4_LO, 0.0));
     let u = (a * y - b * x) / (a * x + b * y);
-    let s = u * u;
-    let (s2, s4) = (s * s, s * s * s * s);
-    let p03 = (P[3] * s + P[2]) * s2 + (P[1] * s + P[0]);
-    let p47 = (P[7] * s + P[6]) * s2 + (P[5] * s + P[4]);
-    let p8a = P[10] * s2 + (P[9] * s + P[8]);
-    let p = (p8a * s4 + p47) * s4 + p03;
-    hi + (u + (u * s * p + lo))
+    rotated_atan(u, hi, lo)
 }
 
 /// [`corner_angles_and_masses_batch`] on `faces` (1 to [`CORNER_BATCH`],
