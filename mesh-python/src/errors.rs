@@ -13,6 +13,7 @@ use mesh_geodesic::GeodesicError;
 use mesh_io::IoError;
 use mesh_kernel::MeshError;
 use mesh_param::ParamError;
+use mesh_remesh::RemeshError;
 use mesh_spectral::SpectralError;
 use mesh_wavelet::WaveletError;
 use pyo3::exceptions::PyRuntimeError;
@@ -169,6 +170,19 @@ impl From<ParamError> for Failure {
             ParamError::NotADisk { .. } => Kind::Topology,
             ParamError::InvalidOption { .. } => Kind::InvalidOption,
             ParamError::DegenerateFaces { .. } | ParamError::NonFinite { .. } => Kind::Degenerate,
+            _ => Kind::Other,
+        };
+        Self::new(kind, e.to_string())
+    }
+}
+
+impl From<RemeshError> for Failure {
+    fn from(e: RemeshError) -> Self {
+        let kind = match &e {
+            RemeshError::Mesh(m) => mesh_kind(m),
+            RemeshError::Param(p) => Failure::from(p.clone()).kind,
+            RemeshError::InvalidOption { .. } | RemeshError::TooManyVertices { .. } => Kind::InvalidOption,
+            RemeshError::Delaunay { .. } | RemeshError::ChartFailed { .. } => Kind::Degenerate,
             _ => Kind::Other,
         };
         Self::new(kind, e.to_string())

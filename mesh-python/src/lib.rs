@@ -24,6 +24,7 @@ mod info;
 mod io;
 mod operators;
 mod param;
+mod remesh;
 mod spectral;
 mod topology;
 mod wavelet;
@@ -68,6 +69,7 @@ fn _meshkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geodesic::farthest_point_sampling, m)?)?;
     m.add_function(wrap_pyfunction!(param::parameterize, m)?)?;
     m.add_function(wrap_pyfunction!(param::parameterize_cut_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(remesh::remesh, m)?)?;
     m.add_function(wrap_pyfunction!(spectral::eigenpairs, m)?)?;
     m.add_function(wrap_pyfunction!(spectral::heat_kernel_signature, m)?)?;
     m.add_class::<spectral::Harmonics>()?;

@@ -162,3 +162,19 @@ def test_clean_equals_mesh_clean_on_the_dirty_dragon(manifold, data_dir, cli, tm
     assert (len(V2), len(F2), mk.info(V2, F2)["manifold"]) == (expected["vertices"], expected["faces"], expected["manifold"])
     Vc, Fc = mk.read(out)
     assert np.array_equal(Fc, F2) and np.abs(Vc - V2).max() == 0
+
+
+@pytest.mark.parametrize("name", ["cgal_nefertiti.off", "npm_bunny.obj"])
+def test_remesh_equals_mesh_remesh(name, data_dir, cli, tmp_path):
+    # The same Rust function behind both: the same mesh and report.
+    path = data_dir / name
+    out = tmp_path / "out.ply"
+    expected = cli("remesh", path, "--out", out, "--json")
+    V, F = mk.read(path)
+    (W, G), report = mk.remesh(V, F, return_report=True)
+    Wc, Gc = mk.read(out)
+    assert np.array_equal(G, Gc) and np.allclose(W, Wc, rtol=0, atol=1e-12)
+    assert report["vertices"] == expected["vertices"] and report["faces"] == expected["faces"]
+    assert report["hausdorff_relative"] == pytest.approx(expected["hausdorff"]["symmetric_relative"], rel=1e-12)
+    assert report["output_topology"]["euler_characteristic"] == expected["output_topology"]["euler_characteristic"]
+    assert not report["topology_changed"]

@@ -355,3 +355,20 @@ def test_clean_repairs_what_info_counts():
     j = mk.info(V2, F2)
     assert (j["components"], j["euler_characteristic"], j["manifold"], j["inconsistent_edges"]) == (1, 2, True, 0)
     assert j["volume"] > 0  # faces outward
+
+
+def test_remesh_keeps_the_sphere_and_its_topology():
+    V, F = mk.shape("icosphere", 4)
+    (W, G), report = mk.remesh(V, F, edge_length=0.15, return_report=True)
+    # Vertices on the input, which lies within its own sagitta of the unit sphere.
+    assert np.all(np.abs(np.linalg.norm(W, axis=1) - 1.0) < H_OVER_R**2 / 2)
+    assert report["output_topology"]["euler_characteristic"] == 2 and not report["topology_changed"]
+    assert report["edges_within_half"] > 0.95 and report["mean_min_angle_degrees"] > 45
+    assert report["normal_disagreements"] == 0
+    assert G.dtype == np.int64 and G.max() < len(W)
+    with pytest.raises(mk.InvalidOptionError):
+        mk.remesh(V, F, edge_length=-1.0)
+    with pytest.raises(mk.InvalidOptionError):
+        mk.remesh(V, F, edge_length=1e-6, max_vertices=1000)
+    with pytest.raises(mk.InvalidOptionError):
+        mk.remesh(V, F, smoothing_rounds=101)

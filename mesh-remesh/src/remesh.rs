@@ -57,7 +57,7 @@ pub struct RemeshOptions {
     /// Rounds of tangential smoothing after the flips (each: two
     /// iterations of moving every vertex toward its neighbours' centroid in
     /// its tangent plane, projected back onto the input, then flips).
-    /// Default `3`; `0` turns it off. The seams' samples are placed along
+    /// Default `3`; `0` turns it off; at most 100. The seams' samples are placed along
     /// input edges, and where short seam curves meet they leave triangles
     /// of a few degrees that no flip cures; the smoothing moves them.
     pub smoothing_rounds: usize,
@@ -136,6 +136,12 @@ fn check_options(mesh: &TriMesh, o: &RemeshOptions) -> Result<()> {
         return Err(RemeshError::InvalidOption {
             name: "max_fold_degrees",
             reason: format!("{} degrees is not in [0, 90]", o.max_fold_degrees),
+        });
+    }
+    if o.smoothing_rounds > 100 {
+        return Err(RemeshError::InvalidOption {
+            name: "smoothing_rounds",
+            reason: format!("{} is not in [0, 100]", o.smoothing_rounds),
         });
     }
     if o.max_vertices < 3 || o.max_vertices > u32::MAX as usize / 2 {

@@ -553,6 +553,32 @@ def parameterize_cut(V, F, method="harmonic", **options):
 
 
 # --------------------------------------------------------------------------
+# Remeshing
+
+
+def remesh(V, F, edge_length=None, min_angle=28.0, max_vertices=4_000_000, smoothing_rounds=3,
+           hausdorff=True, return_report=False):
+    """Remeshes a manifold mesh to edges near ``edge_length`` (default: the
+    input's mean edge length) through a parameterization (``mesh remesh``):
+    low-distortion charts, seams sampled once, constrained Delaunay
+    refinement per chart, lifted onto the input, stitched, then flips,
+    collapses and ``smoothing_rounds`` rounds of tangential smoothing on the
+    input. Returns ``(V, F)``; with ``return_report`` ``((V, F), report)``:
+    angles, edge lengths against the target, the Hausdorff distance over
+    the bounding-box diagonal (with ``hausdorff``), folds and the topology
+    of both meshes. The topology (Euler characteristic, components,
+    boundary loops) is kept; ``report["topology_changed"]`` says if not.
+    Raises :class:`InvalidOptionError` for an edge length that needs more
+    than ``max_vertices`` vertices, :class:`TopologyError` for a
+    non-manifold input (see :func:`clean`)."""
+    V, F = _mesh(V, F)
+    h = None if edge_length is None else float(edge_length)
+    (W, G), report = _native.remesh(V, F, h, float(min_angle), int(max_vertices), int(smoothing_rounds),
+                                    bool(hausdorff))
+    return ((W, G), report) if return_report else (W, G)
+
+
+# --------------------------------------------------------------------------
 # Spectral
 
 
@@ -768,7 +794,7 @@ __all__ = [
     "gaussian_curvature", "mean_curvature", "principal_curvature", "shape_index_histogram",
     "HeatSolver", "heat_distance", "FastMarchingSolver", "fmm_distance", "exact_distance", "dijkstra",
     "trace_path", "farthest_point_sampling",
-    "PARAMETERIZATION_METHODS", "parameterize", "parameterize_cut",
+    "PARAMETERIZATION_METHODS", "parameterize", "parameterize_cut", "remesh",
     "eigenpairs", "Harmonics", "spectral_filter", "spectral_compress", "heat_kernel_signature",
     "subdivide", "loop_subdivide", "Multiresolution", "wavelet_analysis", "wavelet_synthesis",
     "wavelet_compress",
