@@ -54,7 +54,7 @@ pub struct RemeshOptions {
     /// anisotropy and the seams leave thin triangles in 3D, and flips
     /// (which move no vertex) cure most of them.
     pub max_fold_degrees: f64,
-    /// Rounds of tangential smoothing after the flips (each: two
+    /// Rounds of tangential smoothing (Botsch and Kobbelt 2004) after the flips (each: two
     /// iterations of moving every vertex toward its neighbours' centroid in
     /// its tangent plane, projected back onto the input, then flips).
     /// Default `3`; `0` turns it off; at most 100. The seams' samples are placed along

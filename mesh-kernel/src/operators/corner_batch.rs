@@ -32,7 +32,8 @@ const LANES: usize = CORNER_BATCH;
 pub type CornerBatch = [[(f64, f64); 3]; CORNER_BATCH];
 
 /// The corner angles ([`crate::geometry::triangle_angles`]) and `kind`
-/// areas ([`super::corner_masses`]) of `mesh`'s faces `first..` (up to
+/// areas ([`super::corner_masses`]: barycentric thirds or the mixed Voronoi
+/// areas of Meyer et al. 2003) of `mesh`'s faces `first..` (up to
 /// [`CORNER_BATCH`] of them, fewer at the end) into `out`, bit for bit
 /// those of [`corner_angles_and_masses`] face by face, about twice as fast:
 /// the positions of the batch are read first, then one loop over the
