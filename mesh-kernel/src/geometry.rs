@@ -34,7 +34,7 @@ pub fn norm(v: DVec3) -> f64 {
 
 /// `v / |v|` computed without overflow or underflow (see [`norm`]), or zero
 /// when `v` is zero or not finite.
-#[inline]
+#[inline(always)]
 pub fn unit_vector(v: DVec3) -> DVec3 {
     let m = v.abs().max_element();
     if m > 1e-150 && m < 1e150 {
@@ -317,45 +317,60 @@ impl NormalWeighting {
 /// of length over- or underflows them. O(F).
 pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> {
     // Multiplying by the inverse of a power of two is as exact as dividing,
-    // and faster; the inverse of a subnormal unit would overflow.
-    let unit = crate::units::length_unit(mesh);
-    let per_unit = 1.0 / unit;
-    let in_unit = |p: DVec3| if per_unit.is_finite() { p * per_unit } else { p / unit };
-    let corners = |f: usize| mesh.triangle(FaceId::new(f)).map(in_unit);
-    let (n, faces) = (mesh.vertex_count(), mesh.faces());
-    if weighting == NormalWeighting::Max {
-        // With the area-weighted sum beside, for where Max's sum vanishes.
-        let sums = par::scatter(
+    // and faster. The inverse of a subnormal unit would overflow: such a
+    // mesh is first copied into its unit (normals do not depend on scale).
+    let per_unit = 1.0 / crate::units::length_unit(mesh);
+    if !per_unit.is_finite() {
+        return vertex_normals(&crate::units::normalized(mesh).0, weighting);
+    }
+    let (n, faces, p) = (mesh.vertex_count(), mesh.faces(), mesh.positions());
+    let corners = |f: usize| scaled_corners(p, faces[f], per_unit);
+    let mut normals = match weighting {
+        // The common case on its own, where the compiler keeps it short.
+        NormalWeighting::Area => {
+            par::scatter(n, faces, DVec3::ZERO, |f| [double_area_vector(corners(f)); 3], |sum, w| *sum += w)
+        }
+        NormalWeighting::Max => {
+            // With the area-weighted sum beside, for where Max's sum vanishes.
+            let sums = par::scatter(
+                n,
+                faces,
+                [DVec3::ZERO; 2],
+                |f| {
+                    let c = corners(f);
+                    let area2 = double_area_vector(c);
+                    normal_weights(weighting, c, area2).map(|w| [w, area2])
+                },
+                |sum, [w, area2]| {
+                    sum[0] += w;
+                    sum[1] += area2;
+                },
+            );
+            return par::map(n, |v| match unit_vector(sums[v][0]) {
+                DVec3::ZERO => unit_vector(sums[v][1]),
+                unit => unit,
+            });
+        }
+        _ => par::scatter(
             n,
             faces,
-            [DVec3::ZERO; 2],
+            DVec3::ZERO,
             |f| {
                 let c = corners(f);
-                let area2 = double_area_vector(c);
-                normal_weights(weighting, c, area2).map(|w| [w, area2])
+                normal_weights(weighting, c, double_area_vector(c))
             },
-            |sum, [w, area2]| {
-                sum[0] += w;
-                sum[1] += area2;
-            },
-        );
-        return par::map(n, |v| match unit_vector(sums[v][0]) {
-            DVec3::ZERO => unit_vector(sums[v][1]),
-            unit => unit,
-        });
-    }
-    let mut normals = par::scatter(
-        n,
-        faces,
-        DVec3::ZERO,
-        |f| {
-            let c = corners(f);
-            normal_weights(weighting, c, double_area_vector(c))
-        },
-        |sum, w| *sum += w,
-    );
+            |sum, w| *sum += w,
+        ),
+    };
     par::update(&mut normals, |n| *n = unit_vector(*n));
     normals
+}
+
+/// The corners of a face times `scale`; always inlined, since a call per face
+/// costs as much as the work of an area-weighted normal.
+#[inline(always)]
+fn scaled_corners(p: &[DVec3], [a, b, c]: [u32; 3], scale: f64) -> [DVec3; 3] {
+    [p[a as usize] * scale, p[b as usize] * scale, p[c as usize] * scale]
 }
 
 /// What each corner of a face (given in the mesh's unit, with its doubled

@@ -95,7 +95,7 @@ where
     A: Clone + Send + Sync,
     V: Copy + Send,
 {
-    scatter_batched::<A, V, 1>(n, faces, init, |f| [values(f)], add)
+    scatter_with(n, faces, init, &Single(values), add)
 }
 
 /// [`scatter`] with the values of `B` consecutive faces at a time:
@@ -115,22 +115,53 @@ where
     A: Clone + Send + Sync,
     V: Copy + Send,
 {
-    // Faces `lo..hi` batch by batch, each value to `sink(vertex, value)`.
-    let each = |lo: usize, hi: usize, sink: &mut dyn FnMut(u32, V)| {
-        for first in (lo..hi).step_by(B.max(1)) {
-            let x = values(first);
-            for (tri, x) in faces[first..hi.min(first + B)].iter().zip(x) {
-                for k in 0..3 {
-                    sink(tri[k], x[k]);
-                }
-            }
-        }
-    };
+    scatter_with(n, faces, init, &Batched(values), add)
+}
+
+/// The values of the faces of a batch: a trait rather than a closure, so
+/// that the one-face case inlines into the loop (a call per face, with its
+/// result returned through memory, cost a third of an area-weighted normal).
+trait FaceValues<V, const B: usize>: Sync + Send {
+    fn of(&self, first: usize) -> [[V; 3]; B];
+}
+
+/// One face at a time ([`scatter`]).
+struct Single<F>(F);
+
+impl<V, F: Fn(usize) -> [V; 3] + Sync + Send> FaceValues<V, 1> for Single<F> {
+    #[inline(always)]
+    fn of(&self, first: usize) -> [[V; 3]; 1] {
+        [(self.0)(first)]
+    }
+}
+
+/// `B` faces at a time ([`scatter_batched`]).
+struct Batched<F>(F);
+
+impl<V, F: Fn(usize) -> [[V; 3]; B] + Sync + Send, const B: usize> FaceValues<V, B> for Batched<F> {
+    #[inline(always)]
+    fn of(&self, first: usize) -> [[V; 3]; B] {
+        (self.0)(first)
+    }
+}
+
+/// [`scatter_batched`] over any [`FaceValues`].
+fn scatter_with<A, V, const B: usize>(
+    n: usize,
+    faces: &[[u32; 3]],
+    init: A,
+    values: &impl FaceValues<V, B>,
+    add: impl Fn(&mut A, V) + Sync + Send,
+) -> Vec<A>
+where
+    A: Clone + Send + Sync,
+    V: Copy + Send,
+{
     let mut out = vec![init; n];
     let chunks = faces.len().div_ceil(SCATTER_CHUNK);
     let bounds = if chunks > 1 { vertex_ranges(n, faces, chunks) } else { Vec::new() };
     if chunks <= 1 || !mostly_owned(faces, &bounds) {
-        each(0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
+        each_corner::<V, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
         return out;
     }
     let mut owned = Vec::with_capacity(chunks);
@@ -143,7 +174,7 @@ where
     let chunk = |(c, range): (usize, &mut [A])| {
         let (lo, first) = (bounds[c], c * SCATTER_CHUNK);
         let mut aside = Vec::with_capacity(SCATTER_CHUNK / 2);
-        each(first, faces.len().min(first + SCATTER_CHUNK), &mut |v, x| match range
+        each_corner::<V, B>(faces, values, first, faces.len().min(first + SCATTER_CHUNK), &mut |v, x| match range
             .get_mut((v as usize).wrapping_sub(lo))
         {
             Some(slot) => add(slot, x),
@@ -162,6 +193,26 @@ where
         add(&mut out[v as usize], x);
     }
     out
+}
+
+/// Faces `lo..hi` of a [`scatter_batched`], batch by batch, each corner's
+/// value to `sink(vertex, value)`; generic in the sink so that it inlines.
+#[inline(always)]
+fn each_corner<V: Copy, const B: usize>(
+    faces: &[[u32; 3]],
+    values: &impl FaceValues<V, B>,
+    lo: usize,
+    hi: usize,
+    sink: &mut impl FnMut(u32, V),
+) {
+    for first in (lo..hi).step_by(B.max(1)) {
+        let x = values.of(first);
+        for (tri, x) in faces[first..hi.min(first + B)].iter().zip(x) {
+            for k in 0..3 {
+                sink(tri[k], x[k]);
+            }
+        }
+    }
 }
 
 /// Whether, judged from every 61st face, at most one corner in eight falls
