@@ -25,6 +25,8 @@ impl EdgePattern {
     pub fn new(n: usize, edges: &[[VertexId; 2]]) -> Self {
         // Row i: lower entries (edges (j, i), j < i, in increasing j since edges
         // are sorted), then the diagonal, then upper entries (edges (i, j)).
+        // `lower[i]` and `upper[i]` count them, then serve as the cursors
+        // where the next ones go; the lower cursor ends on the diagonal.
         let mut lower = vec![0usize; n];
         let mut upper = vec![0usize; n];
         for [a, b] in edges {
@@ -34,26 +36,27 @@ impl EdgePattern {
         let mut indptr = Vec::with_capacity(n + 1);
         indptr.push(0);
         for i in 0..n {
-            indptr.push(indptr[i] + lower[i] + 1 + upper[i]);
+            let start = indptr[i];
+            indptr.push(start + lower[i] + 1 + upper[i]);
+            upper[i] = start + lower[i] + 1;
+            lower[i] = start;
         }
-        let diag: Vec<usize> = (0..n).map(|i| indptr[i] + lower[i]).collect();
         let mut indices = vec![0usize; indptr[n]];
-        for i in 0..n {
-            indices[diag[i]] = i;
-        }
-        let mut next_lower: Vec<usize> = indptr[..n].to_vec();
-        let mut next_upper: Vec<usize> = diag.iter().map(|d| d + 1).collect();
         let mut slot_edge = vec![u32::MAX; indptr[n]];
         for (e, [a, b]) in edges.iter().enumerate() {
             let (a, b) = (a.idx(), b.idx());
-            let s = next_upper[a];
+            let s = upper[a];
             indices[s] = b;
             slot_edge[s] = e as u32;
-            next_upper[a] += 1;
-            let s = next_lower[b];
+            upper[a] += 1;
+            let s = lower[b];
             indices[s] = a;
             slot_edge[s] = e as u32;
-            next_lower[b] += 1;
+            lower[b] += 1;
+        }
+        let diag = lower;
+        for (i, &d) in diag.iter().enumerate() {
+            indices[d] = i;
         }
         Self { indptr, indices, diag, slot_edge }
     }
