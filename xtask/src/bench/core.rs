@@ -9,12 +9,6 @@ use mesh_kernel::{Reordering, TriMesh};
 
 use super::Operation;
 
-/// A copy of the mesh without its cached connectivity.
-fn fresh(mesh: &TriMesh) -> TriMesh {
-    // Positions and faces were validated when the mesh was built.
-    TriMesh::new(mesh.positions().to_vec(), mesh.faces().to_vec()).expect("copy of a valid mesh")
-}
-
 /// Elements of each of the two arrays of [`stream_copy`]: 2 x 256 MB, far
 /// beyond any cache.
 const STREAM_LEN: usize = 1 << 25;
@@ -53,13 +47,11 @@ pub fn operations<'a>(path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> 
     vec![
         stream_copy(),
         Operation::new("read", move || Ok(mesh_io::read(path)?)),
-        Operation::new("connectivity", move || {
-            let m = fresh(mesh);
+        Operation::on_fresh("connectivity", mesh, |m| {
             let _ = m.connectivity().is_manifold();
             Ok(m)
         }),
-        Operation::new("boundary_loops", move || {
-            let m = fresh(mesh);
+        Operation::on_fresh("boundary_loops", mesh, |m| {
             let n = m.connectivity().boundary_loops()?.len();
             Ok((m, n))
         })

@@ -21,16 +21,22 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use mesh_io::MeshData;
+use mesh_kernel::TriMesh;
 use serde_json::{json, Map, Value};
 
 use crate::Result;
+
+/// What one run leaves: its wall time in milliseconds and what it made
+/// (dropped after the clock stopped).
+type Sample = (f64, Box<dyn std::any::Any + Send>);
 
 /// An operation to time: a name and a closure run once per sample.
 pub struct Operation<'a> {
     /// Stable name (see the module documentation).
     pub name: &'static str,
-    /// One run; its result is dropped outside the timed region.
-    pub run: Box<dyn FnMut() -> Result<Box<dyn std::any::Any + Send>> + Send + 'a>,
+    /// One run, timed inside: a setup may come before the clock starts, and
+    /// what the run made is dropped after it stops.
+    pub run: Box<dyn FnMut() -> Result<Sample> + Send + 'a>,
     /// The least memory traffic of one run in bytes (inputs read once,
     /// outputs written once), for operations bound by memory bandwidth:
     /// the achieved GB/s is printed next to the machine's `stream_copy`.
@@ -40,7 +46,34 @@ pub struct Operation<'a> {
 impl<'a> Operation<'a> {
     /// An operation from a closure returning anything.
     pub fn new<T: Send + 'static>(name: &'static str, mut f: impl FnMut() -> Result<T> + Send + 'a) -> Self {
-        Self { name, run: Box::new(move || f().map(|x| Box::new(x) as Box<dyn std::any::Any + Send>)), bytes: None }
+        Self::after(name, || (), move |()| f())
+    }
+
+    /// An operation on the input `setup` makes before each run, outside the
+    /// timed region (a copy of the mesh without its cached connectivity,
+    /// as the peers get their arrays).
+    pub fn after<S: Send + 'static, T: Send + 'static>(
+        name: &'static str,
+        mut setup: impl FnMut() -> S + Send + 'a,
+        mut f: impl FnMut(S) -> Result<T> + Send + 'a,
+    ) -> Self {
+        let run = move || -> Result<Sample> {
+            let input = setup();
+            let start = Instant::now();
+            let out = f(input)?;
+            Ok((start.elapsed().as_secs_f64() * 1e3, Box::new(out)))
+        };
+        Self { name, run: Box::new(run), bytes: None }
+    }
+
+    /// [`Operation::after`] with a fresh copy of `mesh` (no cached
+    /// connectivity) as the input.
+    pub fn on_fresh<T: Send + 'static>(
+        name: &'static str,
+        mesh: &'a TriMesh,
+        f: impl FnMut(TriMesh) -> Result<T> + Send + 'a,
+    ) -> Self {
+        Self::after(name, move || fresh(mesh), f)
     }
 
     /// The same operation with its least memory traffic per run.
@@ -83,6 +116,12 @@ pub struct Args {
     skip: Vec<String>,
 }
 
+/// A copy of the mesh without its cached connectivity.
+pub fn fresh(mesh: &TriMesh) -> TriMesh {
+    // Positions and faces were validated when the mesh was built.
+    TriMesh::new(mesh.positions().to_vec(), mesh.faces().to_vec()).expect("copy of a valid mesh")
+}
+
 /// Median wall time in milliseconds; the output of each run is dropped after
 /// the clock stops. From 3 runs on, one untimed run comes first: it warms
 /// the caches and builds what a group prepares lazily for its operations.
@@ -92,9 +131,8 @@ fn time(op: &mut Operation<'_>, runs: usize) -> Result<f64> {
     }
     let mut samples = Vec::with_capacity(runs);
     for _ in 0..runs.max(1) {
-        let start = Instant::now();
-        let out = (op.run)()?;
-        samples.push(start.elapsed().as_secs_f64() * 1e3);
+        let (ms, out) = (op.run)()?;
+        samples.push(ms);
         drop(out);
     }
     samples.sort_by(f64::total_cmp);

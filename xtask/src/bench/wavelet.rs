@@ -13,7 +13,7 @@ use mesh_kernel::glam::DVec3;
 use mesh_kernel::TriMesh;
 use mesh_wavelet::{detect, subdivide, FilterBank, Scheme, SubdivideOptions, WaveletKind};
 
-use super::Operation;
+use super::{fresh, Operation};
 
 /// The semi-regular input of the filter-bank operations and what they
 /// start from, built on first use (the untimed warm-up run).
@@ -47,31 +47,27 @@ fn prepared<'b>(cell: &'b Prepared, mesh: &TriMesh) -> crate::Result<&'b Setup> 
     made.as_ref().map_err(|e| e.clone().into())
 }
 
-/// A copy of the mesh without its cached connectivity.
-fn fresh(mesh: &TriMesh) -> TriMesh {
-    // Positions and faces were validated when the mesh was built.
-    TriMesh::new(mesh.positions().to_vec(), mesh.faces().to_vec()).expect("copy of a valid mesh")
-}
-
 /// The subdivision and filter-bank operations.
 pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> {
     let mesh = &data.mesh;
     let mut ops = vec![
-        Operation::new("loop_subdivision_1", move || {
-            Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Loop, levels: 1 })?)
+        Operation::on_fresh("loop_subdivision_1", mesh, |m| {
+            Ok(subdivide(&m, &SubdivideOptions { scheme: Scheme::Loop, levels: 1 })?)
         }),
-        Operation::new("upsample_1", move || {
-            Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Midpoint, levels: 1 })?)
+        Operation::on_fresh("upsample_1", mesh, |m| {
+            Ok(subdivide(&m, &SubdivideOptions { scheme: Scheme::Midpoint, levels: 1 })?)
         }),
-        Operation::new("butterfly_subdivision_1", move || {
-            Ok(subdivide(&fresh(mesh), &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 })?)
+        Operation::on_fresh("butterfly_subdivision_1", mesh, |m| {
+            Ok(subdivide(&m, &SubdivideOptions { scheme: Scheme::Butterfly, levels: 1 })?)
         }),
     ];
     let shared = Prepared::default();
     let (f, hb, b, w) = (shared.clone(), shared.clone(), shared.clone(), shared);
-    ops.push(Operation::new("wavelet_detect_2", move || {
-        Ok(detect(&fresh(&prepared(&f, mesh)?.fine), &Default::default())?)
-    }));
+    ops.push(Operation::after(
+        "wavelet_detect_2",
+        move || prepared(&f, mesh).map(|p| fresh(&p.fine)),
+        |fine| Ok(detect(&fine?, &Default::default())?),
+    ));
     ops.push(Operation::new("wavelet_bank_2", move || {
         Ok(FilterBank::new(&prepared(&hb, mesh)?.hierarchy, Scheme::Midpoint, WaveletKind::Lifted)?)
     }));
