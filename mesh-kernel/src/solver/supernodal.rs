@@ -80,7 +80,13 @@ impl Supernodes {
     #[inline(always)]
     fn solve_portable<const W: usize>(&self, values: &[f64], x: &mut [[f64; W]]) {
         for node in &self.nodes {
-            forward(node, values, x);
+            // A supernode whose unknowns are still all zero solves to zero
+            // and changes nothing below it: with a sparse right-hand side
+            // (a heat source), only the supernodes on the elimination-tree
+            // paths from its non-zeros to the root do any work.
+            if x[node.start..node.start + node.size].iter().flatten().any(|v| *v != 0.0) {
+                forward(node, values, x);
+            }
         }
         for node in self.nodes.iter().rev() {
             backward(node, values, x);
