@@ -189,6 +189,10 @@ pub struct Timings {
     pub factorization: f64,
     /// Krylov iteration (or dense eigendecomposition).
     pub iteration: f64,
+    /// Part of `iteration` in the block solves of the shift-invert operator.
+    pub solves: f64,
+    /// Part of `iteration` orthogonalizing against the basis.
+    pub orthogonalization: f64,
     /// Final Rayleigh-Ritz and residuals.
     pub finalize: f64,
     /// The whole eigensolver call.
@@ -394,6 +398,8 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
             assembly: info.assembly_seconds * 1e3,
             factorization: st.factor_seconds * 1e3,
             iteration: st.iterate_seconds * 1e3,
+            solves: st.solve_seconds * 1e3,
+            orthogonalization: st.orthogonalize_seconds * 1e3,
             finalize: st.finalize_seconds * 1e3,
             eigensolver: st.total_seconds * 1e3,
             write,
