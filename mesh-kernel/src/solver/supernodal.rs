@@ -104,6 +104,23 @@ impl Supernodes {
     }
 }
 
+/// Calls `$kernel::<q, W>` for the chunk width `q = $width` (1 to 7, or
+/// `$C`), with the width as a constant so that the chunk's loops unroll.
+macro_rules! by_width {
+    ($kernel:ident, $width:expr, $C:ident, $W:ident, ($($arg:expr),*)) => {
+        match $width {
+            1 => $kernel::<1, $W>($($arg),*),
+            2 => $kernel::<2, $W>($($arg),*),
+            3 => $kernel::<3, $W>($($arg),*),
+            4 => $kernel::<4, $W>($($arg),*),
+            5 => $kernel::<5, $W>($($arg),*),
+            6 => $kernel::<6, $W>($($arg),*),
+            7 => $kernel::<7, $W>($($arg),*),
+            _ => $kernel::<$C, $W>($($arg),*),
+        }
+    };
+}
+
 /// Forward substitution `L y = b` through one supernode, chunk by chunk
 /// (right-looking): inside the chunk `x_c /= L_cc` and `x_r -= L_rc x_c`
 /// column by column, then every row below the chunk (rest of the supernode,
@@ -123,16 +140,7 @@ fn forward<const W: usize>(node: &Supernode, values: &[f64], x: &mut [[f64; W]])
 fn forward_by<const C: usize, const W: usize>(node: &Supernode, values: &[f64], x: &mut [[f64; W]]) {
     let mut c0 = 0;
     while c0 < node.size {
-        match (node.size - c0).min(C) {
-            1 => forward_chunk::<1, W>(node, values, c0, x),
-            2 => forward_chunk::<2, W>(node, values, c0, x),
-            3 => forward_chunk::<3, W>(node, values, c0, x),
-            4 => forward_chunk::<4, W>(node, values, c0, x),
-            5 => forward_chunk::<5, W>(node, values, c0, x),
-            6 => forward_chunk::<6, W>(node, values, c0, x),
-            7 => forward_chunk::<7, W>(node, values, c0, x),
-            _ => forward_chunk::<C, W>(node, values, c0, x),
-        }
+        by_width!(forward_chunk, (node.size - c0).min(C), C, W, (node, values, c0, x));
         c0 += C.min(node.size - c0);
     }
 }
@@ -178,16 +186,7 @@ fn backward<const W: usize>(node: &Supernode, values: &[f64], x: &mut [[f64; W]]
 fn backward_by<const C: usize, const W: usize>(node: &Supernode, values: &[f64], x: &mut [[f64; W]]) {
     let mut c0 = node.size.saturating_sub(1) / C * C;
     loop {
-        match (node.size - c0).min(C) {
-            1 => backward_chunk::<1, W>(node, values, c0, x),
-            2 => backward_chunk::<2, W>(node, values, c0, x),
-            3 => backward_chunk::<3, W>(node, values, c0, x),
-            4 => backward_chunk::<4, W>(node, values, c0, x),
-            5 => backward_chunk::<5, W>(node, values, c0, x),
-            6 => backward_chunk::<6, W>(node, values, c0, x),
-            7 => backward_chunk::<7, W>(node, values, c0, x),
-            _ => backward_chunk::<C, W>(node, values, c0, x),
-        }
+        by_width!(backward_chunk, (node.size - c0).min(C), C, W, (node, values, c0, x));
         if c0 == 0 {
             break;
         }
