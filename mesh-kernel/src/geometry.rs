@@ -578,6 +578,25 @@ mod tests {
         }
     }
 
+    /// Normals do not depend on the unit of length: the same sphere scaled
+    /// into subnormal coordinates (whose unit has no finite inverse: the
+    /// mesh is first copied into its unit) and near `f64::MAX / 8` gives
+    /// the same normals to rounding.
+    #[test]
+    fn normals_do_not_depend_on_the_scale() {
+        let m = shapes::icosphere(2).unwrap();
+        for w in NormalWeighting::ALL {
+            let reference = vertex_normals(&m, w);
+            for scale in [1e-310, 1e300] {
+                let scaled =
+                    TriMesh::new(m.positions().iter().map(|p| *p * scale).collect(), m.faces().to_vec()).unwrap();
+                for (a, b) in vertex_normals(&scaled, w).iter().zip(&reference) {
+                    assert!((*a - *b).length() < 1e-9, "{w:?} at scale {scale}: {a} vs {b}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn max_normals_are_exact_on_a_sphere() {
         let m = shapes::uv_sphere(2.0, 24, 12).unwrap();
