@@ -99,11 +99,16 @@ pub fn halfedge_cotans(mesh: &TriMesh) -> Vec<f64> {
 
 /// [`halfedge_cotans`] grouped by face.
 fn face_cotans(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    par::map(mesh.face_count(), |f| {
-        let [c0, c1, c2] = triangle_cotans(mesh.triangle(crate::FaceId::new(f)));
-        // Half-edge k runs from corner k to k+1; its opposite corner is k+2.
-        [c2, c0, c1]
-    })
+    par::map(mesh.face_count(), |f| face_halfedge_cotans(mesh, f))
+}
+
+/// The cotangents opposite the half-edges `3 f + k` of face `f`, `[k]`
+/// for half-edge k.
+#[inline]
+fn face_halfedge_cotans(mesh: &TriMesh, f: usize) -> [f64; 3] {
+    let [c0, c1, c2] = triangle_cotans(mesh.triangle(crate::FaceId::new(f)));
+    // Half-edge k runs from corner k to k+1; its opposite corner is k+2.
+    [c2, c0, c1]
 }
 
 /// Cotangent weight of every edge, w_ij = (cot alpha_ij + cot beta_ij) / 2
@@ -118,8 +123,7 @@ pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
     let mut w = vec![0.0; conn.edge_count()];
     for f in 0..mesh.face_count() {
-        let [c0, c1, c2] = triangle_cotans(mesh.triangle(crate::FaceId::new(f)));
-        for (k, c) in [c2, c0, c1].into_iter().enumerate() {
+        for (k, c) in face_halfedge_cotans(mesh, f).into_iter().enumerate() {
             w[conn.edge(crate::HalfedgeId((3 * f + k) as u32)).idx()] += 0.5 * c;
         }
     }

@@ -121,6 +121,17 @@ macro_rules! by_width {
     };
 }
 
+/// Calls `$walk::<c, W>` with the chunk width `c = chunk(W)` as a constant.
+macro_rules! by_chunk {
+    ($walk:ident, $W:ident, ($($arg:expr),*)) => {
+        if chunk($W) == 8 {
+            $walk::<8, $W>($($arg),*)
+        } else {
+            $walk::<4, $W>($($arg),*)
+        }
+    };
+}
+
 /// Forward substitution `L y = b` through one supernode, chunk by chunk
 /// (right-looking): inside the chunk `x_c /= L_cc` and `x_r -= L_rc x_c`
 /// column by column, then every row below the chunk (rest of the supernode,
@@ -128,11 +139,7 @@ macro_rules! by_width {
 /// one visit.
 #[inline(always)]
 fn forward<const W: usize>(node: &Supernode, values: &[f64], x: &mut [[f64; W]]) {
-    if chunk(W) == 8 {
-        forward_by::<8, W>(node, values, x);
-    } else {
-        forward_by::<4, W>(node, values, x);
-    }
+    by_chunk!(forward_by, W, (node, values, x));
 }
 
 /// [`forward`] by chunks of `C` columns (`C` at most 8).
@@ -174,11 +181,7 @@ fn forward_chunk<const Q: usize, const W: usize>(node: &Supernode, values: &[f64
 /// rows below the chunk are visited once for all its columns.
 #[inline(always)]
 fn backward<const W: usize>(node: &Supernode, values: &[f64], x: &mut [[f64; W]]) {
-    if chunk(W) == 8 {
-        backward_by::<8, W>(node, values, x);
-    } else {
-        backward_by::<4, W>(node, values, x);
-    }
+    by_chunk!(backward_by, W, (node, values, x));
 }
 
 /// [`backward`] by chunks of `C` columns (`C` at most 8).
