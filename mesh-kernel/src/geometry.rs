@@ -148,10 +148,12 @@ impl TriangleParts {
     }
 
     /// The dot product of the two edges at corner `k` (edge `k` and the
-    /// reversed edge `k + 2`).
+    /// reversed edge `k + 2`). A zero is always `+0`: negating a `+0` dot
+    /// would give `-0`, whose `atan2(0, -0)` is pi, and a triangle whose
+    /// three points coincide would get the angles `[pi, pi, -pi]`.
     #[inline]
     pub fn corner_dot(&self, k: usize) -> f64 {
-        -self.edges[k].dot(self.edges[(k + 2) % 3])
+        0.0 - self.edges[k].dot(self.edges[(k + 2) % 3])
     }
 
     /// [`triangle_angles`].
@@ -610,6 +612,24 @@ mod tests {
         let m = shapes::disk(4, 3).unwrap();
         for a in corner_angles(&m) {
             assert!((a.iter().sum::<f64>() - PI).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn angles_of_degenerate_triangles_lie_in_zero_pi_and_sum_to_pi() {
+        // Points that coincide (all three, two of them, with either sign of
+        // zero in their coordinates) or lie on a line, at several scales.
+        let q = [DVec3::new(1.0, -2.0, 3.0), DVec3::new(-1.5, 0.5, -0.25), DVec3::new(0.0, -0.0, 0.0)];
+        let mut cases = vec![[q[0]; 3], [q[1]; 3], [q[2]; 3], [-q[0]; 3]];
+        for (a, b) in [(q[0], q[1]), (q[1], q[0]), (q[0], q[2]), (-q[1], q[0])] {
+            cases.extend([[a, a, b], [a, b, a], [b, a, a], [a, b, 2.0 * b - a], [a, 0.5 * (a + b), b]]);
+        }
+        for scale in [1.0, 1e-200, 1e200, -3.0] {
+            for tri in &cases {
+                let angles = triangle_angles(tri.map(|p| p * scale));
+                assert!(angles.iter().all(|a| (0.0..=PI).contains(a)), "{tri:?} x {scale}: {angles:?}");
+                assert!((angles.iter().sum::<f64>() - PI).abs() < 1e-15, "{tri:?} x {scale}: {angles:?}");
+            }
         }
     }
 
