@@ -154,3 +154,66 @@ fn resuming_checks_the_outputs_and_the_last_options() {
     assert_eq!(code, 0);
     assert!(info.contains("\"k1\"") && !info.contains("\"hks0\""), "{info}");
 }
+
+/// A run that ends while a mesh is processed (killed, out of memory) leaves
+/// its start noted without a record: the next run does that mesh last and
+/// alone; a mesh that ended two runs is refused, recorded and skipped until
+/// `--redo`.
+#[test]
+fn a_mesh_that_ends_runs_is_retried_alone_then_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    dataset(&data);
+    std::fs::remove_file(data.join("broken.ply")).unwrap();
+    let out = dir.path().join("out");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["batch", data.to_str().unwrap(), "--recursive", "--out", out.to_str().unwrap()];
+        args.extend_from_slice(&["--jobs", "2", "--json"]);
+        args.extend_from_slice(extra);
+        let (code, stdout, stderr) = mesh(&args);
+        (code, serde_json::from_str::<Value>(&stdout).unwrap_or(Value::Null), stderr)
+    };
+    // What a run killed while processing a.off leaves: its start, no record.
+    let forget = |id: &str| {
+        let path = out.join("results.jsonl");
+        let kept: Vec<String> = std::fs::read_to_string(&path)
+            .unwrap()
+            .lines()
+            .filter(|l| serde_json::from_str::<Value>(l).unwrap()["id"] != id)
+            .map(|l| format!("{l}\n"))
+            .collect();
+        std::fs::write(&path, kept.concat()).unwrap();
+    };
+    let (code, summary, stderr) = run(&[]);
+    assert_eq!((code, summary["ok"].as_u64()), (0, Some(3)), "{stderr}");
+    forget("a.off");
+    let (code, summary, stderr) = run(&[]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!((summary["processed"].as_u64(), summary["retried_alone"].as_u64()), (Some(1), Some(1)));
+    let last = records(&out).pop().unwrap();
+    assert_eq!((last["id"].as_str(), last["status"].as_str()), (Some("a.off"), Some("ok")));
+
+    // Killed while alone too: refused, with a record saying why.
+    forget("a.off");
+    let (code, summary, stderr) = run(&[]);
+    assert_eq!(code, 1, "{stderr}");
+    assert_eq!((summary["failed"].as_u64(), summary["refused_for_ending_runs"].as_u64()), (Some(1), Some(1)));
+    let last = records(&out).pop().unwrap();
+    assert_eq!(
+        (last["id"].as_str(), last["status"].as_str(), last["ended_runs"].as_u64()),
+        (Some("a.off"), Some("failed"), Some(2))
+    );
+    assert!(last["error"].as_str().unwrap().contains("--redo"), "{last}");
+    // Skipped from then on, and the run still says so in its status.
+    let (code, summary, stderr) = run(&[]);
+    assert_eq!((code, summary["processed"].as_u64()), (1, Some(0)));
+    assert!(stderr.contains("ended two runs"), "{stderr}");
+    // Other inputs or options are other work: a.off is done under them.
+    let (code, summary, stderr) = run(&["--no-fields"]);
+    assert_eq!((code, summary["processed"].as_u64()), (0, Some(3)), "{stderr}");
+    // --redo tries it again.
+    let (code, summary, stderr) = run(&["--redo"]);
+    assert_eq!((code, summary["ok"].as_u64()), (0, Some(3)), "{stderr}");
+    let (code, summary, _) = run(&[]);
+    assert_eq!((code, summary["processed"].as_u64()), (0, Some(0)));
+}

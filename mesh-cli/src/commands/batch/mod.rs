@@ -21,6 +21,14 @@
 //!   same file (path, size, modification time) and configuration and whose
 //!   output file is still there, so an interrupted run resumes where it
 //!   stopped; `--redo` processes all.
+//! - `OUT/started.jsonl` notes each mesh as it starts. A mesh that was
+//!   started after its last record was being processed when a run ended
+//!   (killed, out of memory, interrupted): the next run processes it after
+//!   the others and alone, so that it cannot take other meshes down with it
+//!   and is known for certain if it ends that run too. A mesh that ended two
+//!   runs is not tried again: it gets a `failed` record with
+//!   `"ended_runs": 2` and the run exits with status 1; later runs skip it
+//!   (and still exit 1) until `--redo`.
 //! - Progress: a bar on a terminal, one line per mesh otherwise.
 
 mod inputs;
@@ -107,36 +115,51 @@ pub fn run(args: &Args) -> CliResult<()> {
     // folder may be the input folder).
     let all = inputs::collect(&args.inputs, args.recursive, &args.out.join(MESHES))?;
     let config = config_string(&ops, args);
-    let previous = if args.redo { journal::Previous::default() } else { journal::read(&args.out)? };
-    let mut todo = Vec::new();
+    let previous = journal::read(&args.out)?;
+    let (mut todo, mut alone, mut ended_twice, mut refused_before) = (Vec::new(), Vec::new(), Vec::new(), 0);
     for input in &all {
         let stamp = Stamp::of(&input.id, &input.path, &config)?;
-        if !previous.is_done(&stamp, &args.out) {
+        if args.redo {
             todo.push((input, stamp));
+            continue;
+        }
+        if previous.is_done(&stamp, &args.out) {
+            continue;
+        }
+        if previous.was_refused(&stamp) {
+            refused_before += 1;
+            continue;
+        }
+        match previous.interruptions(&stamp) {
+            0 => todo.push((input, stamp)),
+            1 => alone.push((input, stamp)),
+            _ => ended_twice.push((input, stamp)),
         }
     }
     // Largest files first: the long meshes start early and the short ones fill in.
     todo.sort_by(|a, b| b.1.size.cmp(&a.1.size).then_with(|| a.0.id.cmp(&b.0.id)));
-    let skipped = all.len() - todo.len();
-    let journal = Journal::open(&args.out)?;
-    let progress = Progress::new(todo.len());
+    let skipped = all.len() - todo.len() - alone.len() - ended_twice.len();
+    let journal = Journal::open(&args.out, &previous)?;
+    let progress = Progress::new(todo.len() + alone.len() + ended_twice.len());
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build()?;
     let params = Params { k: args.k, times: args.times };
-    let records: Vec<Value> = pool.install(|| {
-        todo.par_iter()
-            .with_max_len(1)
-            .map(|(input, stamp)| {
-                let mut record = process(input, stamp, &ops, params, args);
-                if let Err(e) = journal.append(&record) {
-                    // Not recorded: the next run does it again; this one fails.
-                    record["status"] = json!("failed");
-                    record["error"] = json!(format!("the record could not be written: {e}"));
-                }
-                progress.finished(&input.id, &record);
-                record
-            })
-            .collect()
-    });
+    let finish = |input: &Input, mut record: Value| {
+        if let Err(e) = journal.append(&record) {
+            // Not recorded: the next run does it again; this one fails.
+            record["status"] = json!("failed");
+            record["error"] = json!(format!("the record could not be written: {e}"));
+        }
+        progress.finished(&input.id, &record);
+        record
+    };
+    let mut records: Vec<Value> = ended_twice
+        .iter()
+        .map(|(input, stamp)| finish(input, refusal(stamp, &previous, previous.interruptions(stamp))))
+        .collect();
+    let run_one = |(input, stamp): &(&Input, Stamp)| finish(input, process(input, stamp, &journal, &ops, params, args));
+    records.extend(pool.install(|| todo.par_iter().with_max_len(1).map(run_one).collect::<Vec<_>>()));
+    // One at a time, each mesh's own loops on every thread.
+    records.extend(pool.install(|| alone.iter().map(run_one).collect::<Vec<_>>()));
     progress.finish();
     let ok = records.iter().filter(|r| r["status"] == "ok").count();
     let failed = records.len() - ok;
@@ -153,6 +176,8 @@ pub fn run(args: &Args) -> CliResult<()> {
         "wall_s": wall_s,
         "meshes_per_s": records.len() as f64 / wall_s,
         "vertices_per_s": vertices as f64 / wall_s,
+        "retried_alone": alone.len(),
+        "refused_for_ending_runs": ended_twice.len() + refused_before,
         "journal": args.out.join(journal::FILE_NAME).display().to_string(),
         "unreadable_journal_lines": previous.unreadable_lines,
     });
@@ -177,7 +202,33 @@ pub fn run(args: &Args) -> CliResult<()> {
         )
         .into());
     }
+    if refused_before > 0 {
+        return Err(format!(
+            "{refused_before} meshes were not tried: each ended two runs while being processed (their records in {} \
+             have \"{}\"; --redo tries them again)",
+            args.out.join(journal::FILE_NAME).display(),
+            journal::KILLED
+        )
+        .into());
+    }
     Ok(())
+}
+
+/// The failed record of a mesh during which `count` runs ended, the last
+/// one while it was processed alone: it is not tried again.
+fn refusal(stamp: &Stamp, previous: &journal::Previous, count: usize) -> Value {
+    let mut record = stamp.started_json(previous.last_start(stamp).unwrap_or(0));
+    record.insert("status".into(), json!("failed"));
+    record.insert(
+        "error".into(),
+        json!(format!(
+            "{count} runs ended while processing this mesh, the last one while it was processed alone (killed, \
+             out of memory?): not tried again until --redo"
+        )),
+    );
+    record.insert(journal::KILLED.into(), json!(count));
+    record.insert("total_ms".into(), json!(0.0));
+    Value::Object(record)
 }
 
 /// The configuration a record was made under: operations and parameters.
@@ -186,13 +237,20 @@ fn config_string(ops: &[Op], args: &Args) -> String {
     format!("do={};k={};times={};fields={}", names.join(","), args.k, args.times, !args.no_fields)
 }
 
-/// Processes one mesh into its record; never fails and never unwinds: an
-/// error (or a panic, which would be a bug) becomes a `failed` record.
-fn process(input: &Input, stamp: &Stamp, ops: &[Op], params: Params, args: &Args) -> Value {
+/// Notes the start of one mesh and processes it into its record; never
+/// fails and never unwinds: an error (or a panic, which would be a bug)
+/// becomes a `failed` record.
+fn process(input: &Input, stamp: &Stamp, journal: &Journal, ops: &[Op], params: Params, args: &Args) -> Value {
     let start = Instant::now();
-    let result = catch_unwind(AssertUnwindSafe(|| process_mesh(input, ops, params, args)))
-        .unwrap_or_else(|panic| Err(format!("internal error: {}", panic_text(&panic)).into()));
-    let mut record = stamp.to_json();
+    let (started_ns, result) = match journal.start(stamp) {
+        Ok(t) => (
+            t,
+            catch_unwind(AssertUnwindSafe(|| process_mesh(input, ops, params, args)))
+                .unwrap_or_else(|panic| Err(format!("internal error: {}", panic_text(&panic)).into())),
+        ),
+        Err(e) => (0, Err(format!("the start could not be noted: {e}").into())),
+    };
+    let mut record = stamp.started_json(started_ns);
     match result {
         Ok(fields) => {
             record.insert("status".into(), json!("ok"));
