@@ -206,7 +206,8 @@ fn a_mesh_that_ends_runs_is_retried_alone_then_refused() {
     assert!(last["error"].as_str().unwrap().contains("--redo"), "{last}");
     // Skipped from then on, and the run still says so in its status.
     let (code, summary, stderr) = run(&[]);
-    assert_eq!((code, summary["processed"].as_u64()), (1, Some(0)));
+    assert_eq!((code, summary["processed"].as_u64(), summary["skipped_as_done"].as_u64()), (1, Some(0), Some(2)));
+    assert_eq!(summary["refused_for_ending_runs"].as_u64(), Some(1));
     assert!(stderr.contains("ended two runs"), "{stderr}");
     // Other inputs or options are other work: a.off is done under them.
     let (code, summary, stderr) = run(&["--no-fields"]);

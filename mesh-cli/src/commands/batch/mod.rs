@@ -138,7 +138,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     }
     // Largest files first: the long meshes start early and the short ones fill in.
     todo.sort_by(|a, b| b.1.size.cmp(&a.1.size).then_with(|| a.0.id.cmp(&b.0.id)));
-    let skipped = all.len() - todo.len() - alone.len() - ended_twice.len();
+    let skipped = all.len() - todo.len() - alone.len() - ended_twice.len() - refused_before;
     let journal = Journal::open(&args.out, &previous)?;
     let progress = Progress::new(todo.len() + alone.len() + ended_twice.len());
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build()?;
@@ -185,9 +185,10 @@ pub fn run(args: &Args) -> CliResult<()> {
         print_json(&summary)?;
     } else {
         println!(
-            "{} meshes: {ok} ok, {failed} failed, {skipped} already done; {wall_s:.1} s, {:.1} meshes/s, {:.0} vertices/s \
-             ({} threads); records in {}",
+            "{} meshes: {ok} ok, {failed} failed, {skipped} already done{}; {wall_s:.1} s, {:.1} meshes/s, \
+             {:.0} vertices/s ({} threads); records in {}",
             all.len(),
+            if refused_before > 0 { format!(", {refused_before} skipped for ending two runs") } else { String::new() },
             records.len() as f64 / wall_s,
             vertices as f64 / wall_s,
             jobs,
@@ -204,7 +205,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     }
     if refused_before > 0 {
         return Err(format!(
-            "{refused_before} meshes were not tried: each ended two runs while being processed (their records in {} \
+            "{refused_before} of the meshes were not tried: each ended two runs while being processed (their records in {} \
              have \"{}\"; --redo tries them again)",
             args.out.join(journal::FILE_NAME).display(),
             journal::KILLED
