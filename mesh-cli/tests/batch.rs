@@ -218,3 +218,23 @@ fn a_mesh_that_ends_runs_is_retried_alone_then_refused() {
     let (code, summary, _) = run(&[]);
     assert_eq!((code, summary["processed"].as_u64()), (0, Some(0)));
 }
+
+/// Two runs into one output folder at once: the second one is refused.
+#[test]
+fn a_second_run_into_the_same_folder_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    dataset(&data);
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let held = std::fs::File::create(out.join("batch.lock")).unwrap();
+    held.lock().unwrap();
+    let args = ["batch", data.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    let (code, _, stderr) = mesh(&args);
+    assert_ne!(code, 0);
+    assert!(stderr.contains("another `mesh batch` is writing to"), "{stderr}");
+    assert!(!out.join("results.jsonl").exists(), "the refused run wrote nothing");
+    held.unlock().unwrap();
+    let (code, _, stderr) = mesh(&args);
+    assert_eq!(code, 1, "only broken.ply fails: {stderr}");
+}

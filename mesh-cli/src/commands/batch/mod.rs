@@ -29,6 +29,9 @@
 //!   runs is not tried again: it gets a `failed` record with
 //!   `"ended_runs": 2` and the run exits with status 1; later runs skip it
 //!   (and still exit 1) until `--redo`.
+//! - One run at a time per output folder: a second one exits at once with
+//!   an error (an advisory lock on `OUT/batch.lock`, released however the
+//!   first run ends).
 //! - Progress: a bar on a terminal, one line per mesh otherwise.
 
 mod inputs;
@@ -111,6 +114,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     };
     std::fs::create_dir_all(args.out.join(MESHES))
         .map_err(|e| format!("cannot create {}: {e}", args.out.join(MESHES).display()))?;
+    let _lock = lock(&args.out)?;
     // Only what this command writes is left out of the inputs (the output
     // folder may be the input folder).
     let all = inputs::collect(&args.inputs, args.recursive, &args.out.join(MESHES))?;
@@ -230,6 +234,40 @@ fn refusal(stamp: &Stamp, previous: &journal::Previous, count: usize) -> Value {
     record.insert(journal::KILLED.into(), json!(count));
     record.insert("total_ms".into(), json!(0.0));
     Value::Object(record)
+}
+
+/// The lock file in the output folder.
+const LOCK: &str = "batch.lock";
+
+/// Locks the output folder for this run (an advisory lock on `OUT/batch.lock`,
+/// released when the run ends, however it ends): a second run on the same
+/// folder would redo the first one's meshes and take its meshes in flight
+/// for ones that ended a run. Where the file system has no locks, the run
+/// goes on with a warning.
+fn lock(out: &std::path::Path) -> CliResult<Option<std::fs::File>> {
+    let path = out.join(LOCK);
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(|e| format!("cannot open {}: {e}", path.display()))?;
+    match file.try_lock() {
+        Ok(()) => Ok(Some(file)),
+        Err(std::fs::TryLockError::WouldBlock) => Err(format!(
+            "another `mesh batch` is writing to {} (it holds {}): wait for it to end, or choose another --out",
+            out.display(),
+            path.display()
+        )
+        .into()),
+        Err(std::fs::TryLockError::Error(e)) => {
+            eprintln!(
+                "warning: {} cannot be locked ({e}); do not run two batches into this folder at once",
+                path.display()
+            );
+            Ok(None)
+        }
+    }
 }
 
 /// The configuration a record was made under: operations and parameters.
