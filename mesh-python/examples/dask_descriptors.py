@@ -8,7 +8,9 @@ heat trace at eight times (both independent of the unit of length), or its
 error. Without --scheduler a LocalCluster of --workers processes runs on
 this computer; with it, the same script runs on any Dask deployment (the
 files must be readable by every worker under the same path). --workers 0
-runs without Dask, in this process.
+runs without Dask, in this process. The exit status is 1 when any file
+failed (after every file was tried; the table has its error), as for
+``mesh batch``.
 """
 
 import argparse
@@ -56,7 +58,7 @@ def main(argv=None):
               f"the rest starting and stopping the cluster")
     for r in failed:
         print(f"  {r['file']}: {r['error']}", file=sys.stderr)
-    return 0
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":
