@@ -60,7 +60,7 @@ pub use mesh_kernel::{geometry::NormalWeighting, operators::MassKind};
 pub use neighborhood::Neighborhood;
 pub use pointwise::{
     flag_code, pointwise_curvature, sampling_length, CurvatureFlag, FlagCounts, PointwiseCurvature, PointwiseOptions,
-    PLANAR_CURVEDNESS,
+    NOISE_CURVEDNESS, PLANAR_CURVEDNESS,
 };
 pub use status::{StatusCounts, VertexStatus};
 pub use tensor::{curvature_tensor, curvedness, shape_index, CurvatureTensor, TensorMethod, TensorOptions};

@@ -226,6 +226,14 @@ pub struct PointwiseCurvature {
     /// The sampling length of each vertex ([`sampling_length`]), the length
     /// the resolution limit refers to.
     pub length: Vec<f64>,
+    /// How far the rounding of the stored coordinates may have moved a
+    /// vertex: the largest [`mesh_kernel::precision::position_noise`] of the
+    /// mesh (half a step of single precision, or of the decimal grid of a
+    /// text file, at the largest coordinates; 0 for coordinates on no such
+    /// grid). The largest, because a vertex's estimate reads its whole
+    /// neighbourhood. Curvature estimates carry errors of order `noise /
+    /// length^2` from it.
+    pub position_noise: f64,
 }
 
 impl PointwiseCurvature {
@@ -239,9 +247,12 @@ impl PointwiseCurvature {
     /// Area-weighted histogram of the [`crate::shape_index`] over `bins`
     /// equal bins of [-1, 1] (first bin: cups, middle: saddles, last: caps),
     /// over the vertices that are not flagged and not planar, each weighted
-    /// by its [`Self::area`]. A vertex is planar when its curvedness times
-    /// its sampling [`Self::length`] is below [`PLANAR_CURVEDNESS`]: there
-    /// the shape index is undefined, and the principal curvatures of a flat
+    /// by its [`Self::area`]. A vertex is planar when its curvedness `c`
+    /// times its sampling [`Self::length`] `h` is below
+    /// [`PLANAR_CURVEDNESS`], or when `c h^2` is below [`NOISE_CURVEDNESS`]
+    /// times its [`Self::position_noise`] (the curvature the rounding of a
+    /// single-precision or text file's coordinates can fake): there the
+    /// shape index is undefined, and the principal curvatures of a flat
     /// region are rounding noise whose shape index is anything (a grid or
     /// the flat faces of a CAD part would otherwise fill random bins, and
     /// differently after a rotation). The fractions sum to 1 (all 0 when no
@@ -256,7 +267,8 @@ impl PointwiseCurvature {
         let (k1, k2) = (&self.tensor.k1, &self.tensor.k2);
         for i in 0..self.flag.len() {
             let usable = self.flag[i].is_none() && k1[i].is_finite() && k2[i].is_finite() && self.area[i] > 0.0;
-            if !usable || crate::curvedness(k1[i], k2[i]) * self.length[i] < PLANAR_CURVEDNESS {
+            let (c, h) = (crate::curvedness(k1[i], k2[i]), self.length[i]);
+            if !usable || c * h < PLANAR_CURVEDNESS || c * h * h < NOISE_CURVEDNESS * self.position_noise {
                 continue;
             }
             let s = crate::shape_index(k1[i], k2[i]);
@@ -286,13 +298,25 @@ impl PointwiseCurvature {
 /// million sampling lengths long. Fits on flat regions give curvatures of
 /// order 1e-13 / length from rounding in double precision; the least
 /// curvature a mesh can resolve is many orders above this. Coordinates
-/// rounded to single precision (STL, glTF, float PLY) or to 6-7 significant
-/// digits (most text files) carry position noise `d` a million times larger,
-/// and flat regions then show curvedness times length of order `d / length`
-/// (1e-6 to 1e-4 on the meshes of `cargo xtask dataset`): above this floor,
-/// so their flat regions spread over the bins. Telling that noise from
-/// curvature needs the fit's residual, which the histogram does not use yet.
+/// stored rounded (single precision, text) carry far more noise; that floor
+/// is [`NOISE_CURVEDNESS`].
 pub const PLANAR_CURVEDNESS: f64 = 1e-6;
+
+/// Below `NOISE_CURVEDNESS` times the mesh's position noise `d`
+/// ([`PointwiseCurvature::position_noise`]), a vertex's curvedness times its
+/// sampling length squared (`c h^2`, a height over the neighbourhood)
+/// counts as planar in [`PointwiseCurvature::shape_index_histogram`]: the
+/// noise of rounded coordinates fakes curvatures of order `d / h^2`.
+/// Measured on flat grids (40 and 100 a side) and the flat faces of cubes
+/// (10 and 30), rotated, moved up to 500 sizes from the origin or scaled by
+/// 1e3 and 1e-3, then rounded to single precision, to `%.6f` or to `%.6e`:
+/// the largest `c h^2 / d` of a flat vertex was 3.1. A curvature below 8
+/// times the noise is within a factor 3 of what the noise alone gives, so
+/// it is not resolved either; spheres and cylinders of 40 segments keep
+/// their histograms in every one of those cases but one (a cylinder of
+/// radius 1e-3 rounded to 6 decimal places, whose noise is 2% of its edge
+/// length: it counts as planar).
+pub const NOISE_CURVEDNESS: f64 = 8.0;
 
 /// Pointwise Gaussian and mean curvature of every vertex from the curvature
 /// tensor (eq. 2.19-2.20), the discrete values (eq. 2.25, 2.26) beside them,
@@ -318,8 +342,9 @@ pub fn pointwise_curvature(mesh: &TriMesh, options: &PointwiseOptions) -> Result
             reason: format!("must be positive, got {}", options.resolution),
         });
     }
+    let noise = mesh_kernel::precision::position_noise(mesh).into_iter().fold(0.0, f64::max);
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
-    Ok(estimate(&mesh, options)?.in_unit(unit))
+    Ok(PointwiseCurvature { position_noise: noise, ..estimate(&mesh, options)?.in_unit(unit) })
 }
 
 /// [`pointwise_curvature`] in the mesh's own unit.
@@ -382,6 +407,7 @@ fn estimate(mesh: &TriMesh, options: &PointwiseOptions) -> Result<PointwiseCurva
         mean_integrated: h.integrated,
         area: k.area,
         length: radius,
+        position_noise: 0.0,
     })
 }
 

@@ -15,6 +15,7 @@
 //! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |
 //! | [`operators`] | adjacency (eq. 2.5), uniform (eq. 2.12) and cotangent (eq. 2.15) Laplacians, mass matrices, intrinsic Delaunay | 2.2.2, 2.4 |
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
+//! | [`precision`] | how precisely the coordinates were stored (single precision, decimal places or digits) and the position noise that left | |
 //! | [`par`] | parallel maps over index ranges: one threshold and task size for every crate (feature `rayon`) | |
 //! | [`random`] | `SplitMix64`, the one seeded generator (jitter, start blocks, tests) | |
 //! | [`reorder`] | cache-friendly vertex and face orders (a Hilbert curve through the bounding box), with the maps back | |
@@ -65,6 +66,7 @@ pub mod ids;
 pub mod mesh;
 pub mod operators;
 pub mod par;
+pub mod precision;
 pub mod random;
 pub mod reorder;
 pub mod shapes;

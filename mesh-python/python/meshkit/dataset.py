@@ -68,10 +68,10 @@ def descriptor(path, k=30, times=8, bins=16):
     ``heat_trace`` and ``times`` (``times`` values of
     :meth:`meshkit.Harmonics.heat_trace` from ``k`` eigenpairs), ``seconds``.
     Both descriptors are independent of the unit of length and of rigid
-    motions for coordinates in double precision, so files of any scale
-    compare; flat regions of files rounded to single precision or to 6-7
-    digits carry rounding noise that the histogram counts as curvature
-    (see ``mesh_curvature::PLANAR_CURVEDNESS``).
+    motions, so files of any scale compare; the histogram leaves out flat
+    regions, and the curvature that the rounding of a file's coordinates
+    (single precision, 6-7 decimal digits) can fake (see
+    ``mesh_curvature::NOISE_CURVEDNESS``).
     """
     start = time.perf_counter()
     record = {"file": str(path)}

@@ -15,7 +15,8 @@ pub enum Op {
     /// Counts, topology and defects (what `mesh info` prints).
     Info,
     /// Gaussian, mean and principal curvatures (quartic fit), with their
-    /// statistics and a histogram of the shape index.
+    /// statistics, a histogram of the shape index and the position noise of
+    /// the stored coordinates it allowed for.
     Curvature,
     /// Heat-method geodesic distance from the first vertex of the largest
     /// component.
@@ -120,6 +121,7 @@ fn curvature(mesh: &TriMesh, out: &mut Outcome) -> CliResult<Value> {
         "flagged": c.flag_counts().total(),
         "gauss_bonnet_total": c.gauss_bonnet_total(),
         "shape_index_histogram": c.shape_index_histogram(SHAPE_INDEX_BINS),
+        "position_noise": c.position_noise,
     });
     out.fields.push(("curvature_flag".into(), c.flag.iter().map(|f| f64::from(flag_code(*f))).collect()));
     out.fields.push(("gaussian".into(), c.gaussian));
