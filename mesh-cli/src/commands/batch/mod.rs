@@ -120,28 +120,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     let all = inputs::collect(&args.inputs, args.recursive, &args.out.join(MESHES))?;
     let config = config_string(&ops, args);
     let previous = journal::read(&args.out)?;
-    let (mut todo, mut alone, mut ended_twice, mut refused_before) = (Vec::new(), Vec::new(), Vec::new(), 0);
-    for input in &all {
-        let stamp = Stamp::of(&input.id, &input.path, &config)?;
-        if args.redo {
-            todo.push((input, stamp));
-            continue;
-        }
-        if previous.is_done(&stamp, &args.out) {
-            continue;
-        }
-        if previous.was_refused(&stamp) {
-            refused_before += 1;
-            continue;
-        }
-        match previous.interruptions(&stamp) {
-            0 => todo.push((input, stamp)),
-            1 => alone.push((input, stamp)),
-            _ => ended_twice.push((input, stamp)),
-        }
-    }
-    // Largest files first: the long meshes start early and the short ones fill in.
-    todo.sort_by(|a, b| b.1.size.cmp(&a.1.size).then_with(|| a.0.id.cmp(&b.0.id)));
+    let Plan { todo, alone, ended_twice, refused_before } = plan(&all, &previous, &config, args)?;
     let skipped = all.len() - todo.len() - alone.len() - ended_twice.len() - refused_before;
     let journal = Journal::open(&args.out, &previous)?;
     let progress = Progress::new(todo.len() + alone.len() + ended_twice.len());
@@ -219,16 +198,51 @@ pub fn run(args: &Args) -> CliResult<()> {
     Ok(())
 }
 
-/// The failed record of a mesh during which `count` runs ended, the last
-/// one while it was processed alone: it is not tried again.
+/// What a run does with its inputs.
+struct Plan<'a> {
+    /// In parallel, largest files first (the long meshes start early and
+    /// the short ones fill in).
+    todo: Vec<(&'a Input, Stamp)>,
+    /// After those, one at a time: a run ended while each was processed.
+    alone: Vec<(&'a Input, Stamp)>,
+    /// Not tried: two runs ended while each was processed; recorded as failed.
+    ended_twice: Vec<(&'a Input, Stamp)>,
+    /// Not tried and not recorded again: refused by an earlier run.
+    refused_before: usize,
+}
+
+/// Sorts the inputs by what the journal says of them (everything is done
+/// again under `--redo`); those done are left out.
+fn plan<'a>(all: &'a [Input], previous: &journal::Previous, config: &str, args: &Args) -> CliResult<Plan<'a>> {
+    let mut plan = Plan { todo: Vec::new(), alone: Vec::new(), ended_twice: Vec::new(), refused_before: 0 };
+    for input in all {
+        let stamp = Stamp::of(&input.id, &input.path, config)?;
+        if args.redo {
+            plan.todo.push((input, stamp));
+        } else if previous.was_refused(&stamp) {
+            plan.refused_before += 1;
+        } else if !previous.is_done(&stamp, &args.out) {
+            match previous.interruptions(&stamp) {
+                0 => plan.todo.push((input, stamp)),
+                1 => plan.alone.push((input, stamp)),
+                _ => plan.ended_twice.push((input, stamp)),
+            }
+        }
+    }
+    plan.todo.sort_by(|a, b| b.1.size.cmp(&a.1.size).then_with(|| a.0.id.cmp(&b.0.id)));
+    Ok(plan)
+}
+
+/// The failed record of a mesh during which `count` runs ended (after the
+/// first, it was processed alone): it is not tried again.
 fn refusal(stamp: &Stamp, previous: &journal::Previous, count: usize) -> Value {
     let mut record = stamp.started_json(previous.last_start(stamp).unwrap_or(0));
     record.insert("status".into(), json!("failed"));
     record.insert(
         "error".into(),
         json!(format!(
-            "{count} runs ended while processing this mesh, the last one while it was processed alone (killed, \
-             out of memory?): not tried again until --redo"
+            "{count} runs ended while processing this mesh (killed, out of memory?), the later ones with no \
+             other mesh in progress: not tried again until --redo"
         )),
     );
     record.insert(journal::KILLED.into(), json!(count));
