@@ -56,8 +56,10 @@ pub fn storage(mesh: &TriMesh) -> Storage {
     if coords().all(|x| f64::from(x as f32) == x) {
         return Storage::Single;
     }
-    let places = coords().try_fold(0, |most, x| decimal_places(x).map(|k| most.max(k)));
-    let digits = coords().try_fold(1, |most, x| significant_digits(x).map(|s| most.max(s)));
+    // Having k places (digits) implies having more: each coordinate is
+    // first tried at the most found so far, almost always enough.
+    let places = coords().try_fold(0, |most, x| (most..=MAX_PLACES).find(|&k| has_places(x, k)));
+    let digits = coords().try_fold(1, |most, x| (most..=MAX_SIGNIFICANT_DIGITS).find(|&s| has_digits(x, s)));
     match (places, digits) {
         (None, None) => Storage::Exact,
         (places, digits) => Storage::Decimal { places, digits },
@@ -126,22 +128,23 @@ fn has_places(x: f64, k: i32) -> bool {
     }
 }
 
-/// The fewest decimal places `x` has, up to [`MAX_PLACES`].
-fn decimal_places(x: f64) -> Option<i32> {
-    (0..=MAX_PLACES).find(|&k| has_places(x, k))
-}
-
-/// The fewest significant decimal digits `x` has, up to
-/// [`MAX_SIGNIFICANT_DIGITS`].
-fn significant_digits(x: f64) -> Option<i32> {
-    let e = exponent10(x);
-    (1..=MAX_SIGNIFICANT_DIGITS).find(|&s| has_places(x, s - 1 - e))
+/// Whether `x` has at most `s` significant decimal digits.
+fn has_digits(x: f64, s: i32) -> bool {
+    has_places(x, s - 1 - exponent10(x))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::shapes;
+
+    fn decimal_places(x: f64) -> Option<i32> {
+        (0..=MAX_PLACES).find(|&k| has_places(x, k))
+    }
+
+    fn significant_digits(x: f64) -> Option<i32> {
+        (1..=MAX_SIGNIFICANT_DIGITS).find(|&s| has_digits(x, s))
+    }
 
     fn moved(mesh: &TriMesh, round: impl Fn(f64) -> f64) -> TriMesh {
         let p = mesh.positions().iter().map(|p| (*p * 3.7 + DVec3::new(12.5, -0.3, 7.0)).to_array().map(&round).into());
