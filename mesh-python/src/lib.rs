@@ -31,6 +31,12 @@ mod wavelet;
 
 use pyo3::prelude::*;
 
+/// Large arrays on transparent huge pages, as numpy's own arrays of 4 MiB
+/// and more (see `mesh_kernel::alloc`); results handed to numpy without a
+/// copy are released through this allocator too.
+#[global_allocator]
+static ALLOCATOR: mesh_kernel::alloc::HugePages = mesh_kernel::alloc::HugePages;
+
 /// The native module.
 #[pymodule]
 fn _meshkit(m: &Bound<'_, PyModule>) -> PyResult<()> {

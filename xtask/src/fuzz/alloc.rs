@@ -9,7 +9,8 @@
 //! prints how to reproduce the input it was running first (see
 //! [`set_context`]). Cost: two relaxed atomic operations per call.
 
-use std::alloc::{GlobalAlloc, Layout, System};
+use mesh_kernel::alloc::HugePages;
+use std::alloc::{GlobalAlloc, Layout};
 use std::io::Write;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -39,7 +40,8 @@ pub fn limited<T>(f: impl FnOnce() -> T) -> T {
 /// What to print when an allocation is refused (the current fuzz input).
 static CONTEXT: Mutex<[u8; 256]> = Mutex::new([0; 256]);
 
-/// The system allocator, counted.
+/// The workspace's allocator (`mesh_kernel::alloc::HugePages`, as the
+/// `mesh` binary uses), counted.
 pub struct Counting;
 
 impl Counting {
@@ -97,19 +99,19 @@ fn write_number(out: &mut impl Write, mut n: usize) -> std::io::Result<()> {
     out.write_all(b" bytes")
 }
 
-// SAFETY: every call is forwarded to `System` unchanged; only counters are
+// SAFETY: every call is forwarded to `HugePages` unchanged; only counters are
 // updated around it, and a refused request returns null as the trait allows.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        self.counted(layout.size(), || System.alloc(layout))
+        self.counted(layout.size(), || HugePages.alloc(layout))
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        self.counted(layout.size(), || System.alloc_zeroed(layout))
+        self.counted(layout.size(), || HugePages.alloc_zeroed(layout))
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout);
+        HugePages.dealloc(ptr, layout);
         CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
     }
 
@@ -118,7 +120,7 @@ unsafe impl GlobalAlloc for Counting {
         if new_size > old && !self.grow(new_size - old) {
             return std::ptr::null_mut();
         }
-        let p = System.realloc(ptr, layout, new_size);
+        let p = HugePages.realloc(ptr, layout, new_size);
         if p.is_null() {
             if new_size > old {
                 CURRENT.fetch_sub(new_size - old, Ordering::Relaxed);
