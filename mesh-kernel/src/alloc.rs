@@ -64,6 +64,7 @@ fn mapped(layout: Layout) -> bool {
 }
 
 /// The length of the mapping behind a mapped block of `size` bytes.
+#[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 fn mapped_len(size: usize) -> usize {
     size.div_ceil(HUGE_PAGE) * HUGE_PAGE
 }
