@@ -12,10 +12,10 @@ mod render;
 
 use clap::{Parser, Subcommand};
 
-/// Large arrays on transparent huge pages: a fault per 2 MiB instead of per
-/// 4 KiB page on first touch (see `mesh_kernel::alloc`).
+/// Freed large arrays kept for the next stage instead of faulted in again
+/// (see `mesh_kernel::alloc`).
 #[global_allocator]
-static ALLOCATOR: mesh_kernel::alloc::HugePages = mesh_kernel::alloc::HugePages;
+static ALLOCATOR: mesh_kernel::alloc::BlockCache = mesh_kernel::alloc::BlockCache;
 
 /// Digital shape processing on triangle meshes.
 #[derive(Debug, Parser)]

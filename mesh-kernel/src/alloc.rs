@@ -1,18 +1,19 @@
-//! A global allocator that backs large blocks with transparent huge pages
-//! (feature `huge-pages`, Linux; the system allocator everywhere else).
+//! A global allocator that keeps freed large blocks for reuse (feature
+//! `block-cache`, Linux; the system allocator everywhere else).
 //!
 //! A mesh algorithm writes its large outputs (normals, Laplacian entries,
-//! half-edge arrays: tens of MB on a 1e6-vertex mesh) into memory it has
-//! just allocated. The system allocator maps such blocks fresh from the
-//! kernel and returns them when freed, so the first touch of every 4 KiB
-//! page is a page fault in which the kernel zeroes that page: measured at
-//! 0.46 ms per MB on a 2-core AMD EPYC VM, half of the time of building the
-//! half-edges of a 41k-vertex mesh. [`HugePages`] maps every block of at
-//! least 4 MiB itself, on a 2 MiB boundary, and asks for transparent huge
-//! pages (`madvise(MADV_HUGEPAGE)`): one fault per 2 MiB, 0.04-0.05 ms per
-//! MB on the same machine. numpy does the same for its arrays of 4 MiB and
-//! more, so this also puts the workspace on an equal footing with peers that
-//! return numpy arrays.
+//! half-edge arrays, factor storage: tens of MB to GB on a 1e6-vertex mesh)
+//! into memory it has just allocated. The system allocator maps such blocks
+//! fresh from the kernel and gives them back when they are freed, so every
+//! call pays a page fault per 4 KiB page on first touch, in which the kernel
+//! zeroes that page: measured at 0.40-0.66 ms per MB on a 2-core AMD EPYC
+//! VM, as long as building the half-edges of a 41k-vertex mesh takes.
+//! [`BlockCache`] maps every block of at least [`LARGE_BLOCK`] bytes itself
+//! and, when it is freed, keeps its pages (up to [`KEPT_LARGE`] bytes in
+//! all) for the next large allocation, which then costs no fault at all.
+//! Freed memory is kept only up to what the program had in use at once, so
+//! the cache never raises its peak memory; a process that wants the kept
+//! pages back can call [`release`].
 //!
 //! Smaller blocks, and blocks aligned to more than 2 MiB, go to the system
 //! allocator. With glibc, its heap is told once (on the first allocation)
@@ -22,10 +23,15 @@
 //! [`KEPT_FREE`] bytes freed at the top of the heap stay for the next
 //! allocation instead of going back to the kernel. Without that, a
 //! 1-4 MiB array reallocated at every call faults its pages in again each
-//! time (the midpoint upsample of a 41k-vertex mesh ran 1.4 times slower). Where the kernel has transparent huge pages turned
-//! off (`/sys/kernel/mm/transparent_hugepage/enabled` = `never`) the advice
-//! is ignored and a large block costs what it costs under the system
-//! allocator. A large block occupies a whole number of 2 MiB pages.
+//! time (the midpoint upsample of a 41k-vertex mesh ran 1.4 times slower).
+//!
+//! Transparent huge pages (`madvise(MADV_HUGEPAGE)`, one fault per 2 MiB)
+//! were measured and left out. They cost 0.08-0.12 ms per MB where the
+//! kernel reuses pages the process had just freed, but 2.2-2.3 ms per MB on
+//! a VM whose free memory of 8 MiB blocks goes back to the host (Firecracker
+//! with free page reporting), which is where whole huge pages come from: a
+//! heat-method factorization of a 470k-vertex mesh took 4.3-4.5 s with them
+//! and 3.2-3.4 s without (see BENCHMARKS.md, 2026-12-03).
 //!
 //! A library cannot choose the allocator of the program that uses it: the
 //! `mesh` binary, `cargo xtask` and the Python package install this one,
@@ -33,40 +39,62 @@
 //!
 //! ```ignore
 //! #[global_allocator]
-//! static ALLOCATOR: mesh_kernel::alloc::HugePages = mesh_kernel::alloc::HugePages;
+//! static ALLOCATOR: mesh_kernel::alloc::BlockCache = mesh_kernel::alloc::BlockCache;
 //! ```
 
 use std::alloc::{GlobalAlloc, Layout, System};
 
 /// The global allocator of this module: the system allocator, with blocks
-/// of at least [`LARGE_BLOCK`] bytes mapped on huge-page boundaries.
+/// of at least [`LARGE_BLOCK`] bytes mapped by hand and kept for reuse when
+/// freed.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct HugePages;
+pub struct BlockCache;
 
-/// Blocks of at least this many bytes (4 MiB, numpy's threshold) are mapped
-/// on huge pages.
+/// Blocks of at least this many bytes (4 MiB) are mapped by [`BlockCache`]
+/// and kept when freed.
 pub const LARGE_BLOCK: usize = 4 << 20;
 
+/// Most bytes of freed large blocks kept for reuse (1 GiB); a freed block
+/// that does not fit makes the largest kept ones go back to the kernel.
+pub const KEPT_LARGE: usize = 1 << 30;
+
 /// Bytes of freed heap that glibc keeps for reuse (its trim threshold) and
-/// adds to each growth of the heap (its top pad), once [`HugePages`] has
+/// adds to each growth of the heap (its top pad), once [`BlockCache`] has
 /// made its first allocation.
 pub const KEPT_FREE: usize = 64 << 20;
 
-/// The transparent huge page size of x86-64 and of aarch64 with 4 KiB base
-/// pages; a multiple of every base page size, so mapped lengths rounded to
-/// it are whole pages anywhere.
-const HUGE_PAGE: usize = 2 << 20;
+/// Large blocks are mapped in whole multiples of this (2 MiB, a multiple of
+/// every base page size) and on such a boundary, so that a freed block
+/// serves any later request of up to its length and alignment.
+const GRANULE: usize = 2 << 20;
 
-/// Whether [`HugePages`] maps this block itself (the same answer for the
+/// Most freed blocks kept at once.
+const SLOTS: usize = 32;
+
+/// Whether [`BlockCache`] maps this block itself (the same answer for the
 /// allocation and the release of a block, which see the same layout).
 fn mapped(layout: Layout) -> bool {
-    cfg!(target_os = "linux") && layout.size() >= LARGE_BLOCK && layout.align() <= HUGE_PAGE
+    cfg!(target_os = "linux") && layout.size() >= LARGE_BLOCK && layout.align() <= GRANULE
 }
 
 /// The length of the mapping behind a mapped block of `size` bytes.
 #[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 fn mapped_len(size: usize) -> usize {
-    size.div_ceil(HUGE_PAGE) * HUGE_PAGE
+    size.div_ceil(GRANULE) * GRANULE
+}
+
+/// Gives every kept block back to the kernel; returns the bytes released.
+/// For long-running programs after a large computation (the kept blocks
+/// otherwise stay mapped until they are reused or the process ends).
+pub fn release() -> usize {
+    #[cfg(target_os = "linux")]
+    {
+        kept::release()
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        0
+    }
 }
 
 /// Sets glibc's heap thresholds (see the module's documentation) on the
@@ -84,31 +112,28 @@ fn tune_heap_once() {
 
 #[cfg(target_os = "linux")]
 mod map {
-    use super::HUGE_PAGE;
+    use super::GRANULE;
     use libc::{c_void, MAP_ANONYMOUS, MAP_FAILED, MAP_PRIVATE, PROT_READ, PROT_WRITE};
 
-    /// `len` (a multiple of [`HUGE_PAGE`]) zeroed bytes on a 2 MiB boundary,
-    /// advised to use huge pages; null when the kernel refuses.
+    /// `len` (a multiple of [`GRANULE`]) zeroed bytes on a [`GRANULE`]
+    /// boundary; null when the kernel refuses.
     pub(super) fn map(len: usize) -> *mut u8 {
-        let Some(total) = len.checked_add(HUGE_PAGE) else { return std::ptr::null_mut() };
+        let Some(total) = len.checked_add(GRANULE) else { return std::ptr::null_mut() };
         // SAFETY: an anonymous private mapping at an address of the kernel's
-        // choosing touches no existing memory. The parts cut away below lie
-        // inside it, and the advice only concerns the part kept.
+        // choosing touches no existing memory; the parts cut away below lie
+        // inside it.
         unsafe {
             let raw =
                 libc::mmap(std::ptr::null_mut(), total, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
             if raw == MAP_FAILED {
                 return std::ptr::null_mut();
             }
-            let head = (raw as usize).next_multiple_of(HUGE_PAGE) - raw as usize;
+            let head = (raw as usize).next_multiple_of(GRANULE) - raw as usize;
             let start = raw.cast::<u8>().add(head);
             if head > 0 {
                 libc::munmap(raw, head);
             }
             libc::munmap(start.add(len).cast::<c_void>(), total - head - len);
-            // Refused advice (huge pages compiled out of the kernel) leaves
-            // ordinary pages: nothing to handle.
-            libc::madvise(start.cast::<c_void>(), len, libc::MADV_HUGEPAGE);
             start
         }
     }
@@ -125,7 +150,6 @@ mod map {
         if new == MAP_FAILED {
             return std::ptr::null_mut();
         }
-        libc::madvise(new, new_len, libc::MADV_HUGEPAGE);
         new.cast::<u8>()
     }
 
@@ -155,19 +179,109 @@ mod map {
     }
 }
 
+/// The freed large blocks kept for reuse.
+#[cfg(target_os = "linux")]
+mod kept {
+    use super::{map, KEPT_LARGE, SLOTS};
+    use std::sync::Mutex;
+
+    /// Kept blocks as (address, mapped length); address 0 marks a free slot.
+    struct Kept {
+        blocks: [(usize, usize); SLOTS],
+        bytes: usize,
+    }
+
+    static KEPT: Mutex<Kept> = Mutex::new(Kept { blocks: [(0, 0); SLOTS], bytes: 0 });
+
+    impl Kept {
+        /// Removes the block in slot `i` from the cache.
+        fn remove(&mut self, i: usize) -> (usize, usize) {
+            let block = self.blocks[i];
+            self.blocks[i] = (0, 0);
+            self.bytes -= block.1;
+            block
+        }
+
+        /// The slot of the largest kept block.
+        fn largest(&self) -> Option<usize> {
+            (0..SLOTS).filter(|&i| self.blocks[i].0 != 0).max_by_key(|&i| self.blocks[i].1)
+        }
+    }
+
+    /// The smallest kept block of at least `len` bytes at an address
+    /// aligned to `align`, cut to `len` bytes (the rest goes back to the
+    /// kernel); null when there is none.
+    pub(super) fn take(len: usize, align: usize) -> *mut u8 {
+        let Ok(mut kept) = KEPT.lock() else { return std::ptr::null_mut() };
+        let fits = |&(p, l): &(usize, usize)| p != 0 && l >= len && p.is_multiple_of(align);
+        let best = (0..SLOTS).filter(|&i| fits(&kept.blocks[i])).min_by_key(|&i| kept.blocks[i].1);
+        let Some(i) = best else { return std::ptr::null_mut() };
+        let (p, l) = kept.remove(i);
+        drop(kept);
+        let ptr = p as *mut u8;
+        if l > len {
+            // SAFETY: the tail of a kept block is mapped and unused.
+            unsafe { map::unmap(ptr.add(len), l - len) };
+        }
+        ptr
+    }
+
+    /// Keeps a freed block of `len` mapped bytes, making room by releasing
+    /// the largest kept ones, or releases it when it is larger than
+    /// [`KEPT_LARGE`].
+    ///
+    /// # Safety
+    /// `ptr..ptr + len` must be a whole mapping made by [`map::map`] (or
+    /// grown by [`map::remap`]) and no longer used.
+    pub(super) unsafe fn keep(ptr: *mut u8, len: usize) {
+        if len <= KEPT_LARGE {
+            if let Ok(mut kept) = KEPT.lock() {
+                while kept.bytes + len > KEPT_LARGE || kept.blocks.iter().all(|b| b.0 != 0) {
+                    let Some(i) = kept.largest() else { break };
+                    let (p, l) = kept.remove(i);
+                    map::unmap(p as *mut u8, l);
+                }
+                if let Some(slot) = kept.blocks.iter_mut().find(|b| b.0 == 0) {
+                    *slot = (ptr as usize, len);
+                    kept.bytes += len;
+                    return;
+                }
+            }
+        }
+        map::unmap(ptr, len);
+    }
+
+    /// Releases every kept block; returns the bytes released.
+    pub(super) fn release() -> usize {
+        let Ok(mut kept) = KEPT.lock() else { return 0 };
+        let bytes = kept.bytes;
+        for i in 0..SLOTS {
+            if kept.blocks[i].0 != 0 {
+                let (p, l) = kept.remove(i);
+                // SAFETY: a kept block is a whole unused mapping.
+                unsafe { map::unmap(p as *mut u8, l) };
+            }
+        }
+        bytes
+    }
+}
+
 // SAFETY: blocks below the threshold are the system allocator's, unchanged.
-// A mapped block is `mapped_len(size)` bytes from `map` (page-aligned, and
-// 2 MiB-aligned, so every alignment `mapped` accepts holds), released with
-// the same length since `dealloc` gets the layout it was allocated with;
-// `realloc` keeps the mapping's length equal to `mapped_len` of the new
-// size (moving it with `mremap` only for alignments that every page
-// address meets), or moves the contents into a block of the other kind.
-unsafe impl GlobalAlloc for HugePages {
+// A mapped block is `mapped_len(size)` bytes from `map` (2 MiB-aligned) or
+// from the kept blocks (taken only at an address of the requested
+// alignment, cut to that length), and is released or kept with the same
+// length since `dealloc` gets the layout it was allocated with; `realloc`
+// keeps the mapping's length equal to `mapped_len` of the new size (moving
+// it with `mremap` only for alignments that every page address meets), or
+// moves the contents into a block of the other kind.
+unsafe impl GlobalAlloc for BlockCache {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         tune_heap_once();
         #[cfg(target_os = "linux")]
         if mapped(layout) {
-            return map::map(mapped_len(layout.size()));
+            let len = mapped_len(layout.size());
+            let reused = kept::take(len, layout.align());
+            return if reused.is_null() { map::map(len) } else { reused };
         }
         System.alloc(layout)
     }
@@ -176,8 +290,14 @@ unsafe impl GlobalAlloc for HugePages {
         tune_heap_once();
         #[cfg(target_os = "linux")]
         if mapped(layout) {
-            // Fresh anonymous pages are zero.
-            return map::map(mapped_len(layout.size()));
+            let len = mapped_len(layout.size());
+            let reused = kept::take(len, layout.align());
+            if reused.is_null() {
+                // Fresh anonymous pages are zero.
+                return map::map(len);
+            }
+            std::ptr::write_bytes(reused, 0, layout.size());
+            return reused;
         }
         System.alloc_zeroed(layout)
     }
@@ -185,7 +305,7 @@ unsafe impl GlobalAlloc for HugePages {
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         #[cfg(target_os = "linux")]
         if mapped(layout) {
-            return map::unmap(ptr, mapped_len(layout.size()));
+            return kept::keep(ptr, mapped_len(layout.size()));
         }
         System.dealloc(ptr, layout)
     }
@@ -196,7 +316,7 @@ unsafe impl GlobalAlloc for HugePages {
             (false, false) => System.realloc(ptr, layout, new_size),
             #[cfg(target_os = "linux")]
             (true, true) if mapped_len(new_size) <= mapped_len(layout.size()) => {
-                // Shrinking (or growing within the last huge page): keep the
+                // Shrinking (or growing within the last granule): keep the
                 // block, return the pages past its new end.
                 let (old_len, new_len) = (mapped_len(layout.size()), mapped_len(new_size));
                 if new_len < old_len {
@@ -228,56 +348,73 @@ unsafe impl GlobalAlloc for HugePages {
 mod tests {
     use super::*;
 
-    /// Every path of the allocator through its trait, on blocks below,
-    /// at and above the threshold, with the contents checked after each move.
+    /// Every path of the allocator through its trait, on blocks below, at
+    /// and above the threshold, with the contents checked after each move;
+    /// then the reuse of a freed block and [`release`]. One test, since the
+    /// kept blocks are shared by the whole process.
     #[test]
-    fn blocks_of_every_size_keep_their_contents() {
-        let sizes = [64, LARGE_BLOCK - 8, LARGE_BLOCK, LARGE_BLOCK + 3 * HUGE_PAGE + 24, 3 * LARGE_BLOCK];
+    fn blocks_of_every_size_keep_their_contents_and_are_reused() {
+        let sizes = [64, LARGE_BLOCK - 8, LARGE_BLOCK, LARGE_BLOCK + 3 * GRANULE + 24, 3 * LARGE_BLOCK];
         for &from in &sizes {
             for &to in &sizes {
-                for align in [8, 64, 4096] {
+                for align in [8, 64, 4096, GRANULE] {
                     let layout = Layout::from_size_align(from, align).unwrap();
                     // SAFETY: non-zero sizes; each block is released once,
                     // with the layout it has at that moment.
                     unsafe {
-                        let zeroed = HugePages.alloc_zeroed(layout);
+                        // Dirty a block first, so that a zeroed one may be a reused one.
+                        let dirty = BlockCache.alloc(layout);
+                        std::ptr::write_bytes(dirty, 0xAB, from);
+                        BlockCache.dealloc(dirty, layout);
+                        let zeroed = BlockCache.alloc_zeroed(layout);
                         assert!(!zeroed.is_null() && (zeroed as usize).is_multiple_of(align));
                         assert!(std::slice::from_raw_parts(zeroed, from).iter().all(|&b| b == 0));
-                        HugePages.dealloc(zeroed, layout);
+                        BlockCache.dealloc(zeroed, layout);
 
-                        let p = HugePages.alloc(layout);
+                        let p = BlockCache.alloc(layout);
                         assert!(!p.is_null() && (p as usize).is_multiple_of(align));
                         for i in 0..from {
                             *p.add(i) = (i % 251) as u8;
                         }
-                        let q = HugePages.realloc(p, layout, to);
+                        let q = BlockCache.realloc(p, layout, to);
                         assert!(!q.is_null() && (q as usize).is_multiple_of(align), "{from} -> {to}, align {align}");
                         let kept = std::slice::from_raw_parts(q, from.min(to));
                         assert!(kept.iter().enumerate().all(|(i, &b)| b == (i % 251) as u8), "{from} -> {to}");
                         // The whole new block is writable.
                         std::ptr::write_bytes(q, 7, to);
-                        HugePages.dealloc(q, Layout::from_size_align(to, align).unwrap());
+                        BlockCache.dealloc(q, Layout::from_size_align(to, align).unwrap());
                     }
                 }
             }
         }
-    }
-
-    #[test]
-    fn large_blocks_are_mapped_on_huge_page_boundaries() {
         let layout = Layout::from_size_align(LARGE_BLOCK + 1, 8).unwrap();
         assert_eq!(mapped(layout), cfg!(target_os = "linux"));
         assert!(!mapped(Layout::from_size_align(LARGE_BLOCK - 1, 8).unwrap()));
-        assert!(!mapped(Layout::from_size_align(LARGE_BLOCK, 2 * HUGE_PAGE).unwrap()));
-        assert_eq!(mapped_len(LARGE_BLOCK + 1), LARGE_BLOCK + HUGE_PAGE);
-        // SAFETY: allocated and released with the same layout.
-        unsafe {
-            let p = HugePages.alloc(layout);
-            assert!(!p.is_null());
-            if cfg!(target_os = "linux") {
-                assert!((p as usize).is_multiple_of(HUGE_PAGE));
+        assert!(!mapped(Layout::from_size_align(LARGE_BLOCK, 2 * GRANULE).unwrap()));
+        assert_eq!(mapped_len(LARGE_BLOCK + 1), LARGE_BLOCK + GRANULE);
+        if cfg!(target_os = "linux") {
+            release();
+            // SAFETY: allocated and released with the same layout.
+            unsafe {
+                let p = BlockCache.alloc(layout);
+                assert!(!p.is_null() && (p as usize).is_multiple_of(GRANULE));
+                BlockCache.dealloc(p, layout);
+                let q = BlockCache.alloc(layout);
+                assert_eq!(p, q, "a freed block of the same size is reused");
+                BlockCache.dealloc(q, layout);
             }
-            HugePages.dealloc(p, layout);
+            assert_eq!(release(), mapped_len(layout.size()));
+            assert_eq!(release(), 0);
+            // A block larger than the cache goes straight back (never
+            // touched, so it commits no memory).
+            let huge = Layout::from_size_align(KEPT_LARGE + 1, 8).unwrap();
+            // SAFETY: allocated and released with the same layout.
+            unsafe {
+                let p = BlockCache.alloc(huge);
+                assert!(!p.is_null());
+                BlockCache.dealloc(p, huge);
+            }
+            assert_eq!(release(), 0);
         }
     }
 }

@@ -6,7 +6,7 @@
 //!
 //! | module | what it holds | chapter section |
 //! |---|---|---|
-//! | `alloc` | `HugePages`, a global allocator that backs large blocks with transparent huge pages (feature `huge-pages`, for binaries) | |
+//! | `alloc` | `BlockCache`, a global allocator that keeps freed large blocks for reuse (feature `block-cache`, for binaries) | |
 //! | [`mesh`] | [`TriMesh`]: validated `f64` positions and triangles | 2.2.2 |
 //! | [`ids`] | typed indices [`VertexId`], [`FaceId`], [`EdgeId`], [`HalfedgeId`] | |
 //! | [`connectivity`] | half-edges, edges, ordered 1-rings, boundary loops, components, manifold report, Euler characteristic and genus (eq. 2.6-2.7) | 2.2.2, 2.3 |
@@ -46,8 +46,8 @@
 //! ```
 //!
 //! Features: `solver` (default) builds the faer solvers; `rayon` (default)
-//! runs per-face loops of large meshes in parallel; `huge-pages` provides
-//! the `alloc::HugePages` global allocator. Crates that need only the
+//! runs per-face loops of large meshes in parallel; `block-cache` provides
+//! the `alloc::BlockCache` global allocator. Crates that need only the
 //! data model turn both off.
 //!
 //! Conventions: geometry is `f64`, points are `glam::DVec3`, triangles are
@@ -56,7 +56,7 @@
 //! user can feed in panics: invalid input is a [`MeshError`].
 #![deny(missing_docs)]
 
-#[cfg(feature = "huge-pages")]
+#[cfg(feature = "block-cache")]
 pub mod alloc;
 pub mod cache;
 pub mod choice;

@@ -31,11 +31,11 @@ mod wavelet;
 
 use pyo3::prelude::*;
 
-/// Large arrays on transparent huge pages, as numpy's own arrays of 4 MiB
-/// and more (see `mesh_kernel::alloc`); results handed to numpy without a
-/// copy are released through this allocator too.
+/// Freed large arrays kept for the next call instead of faulted in again
+/// (see `mesh_kernel::alloc`); results handed to numpy without a copy are
+/// released through this allocator too.
 #[global_allocator]
-static ALLOCATOR: mesh_kernel::alloc::HugePages = mesh_kernel::alloc::HugePages;
+static ALLOCATOR: mesh_kernel::alloc::BlockCache = mesh_kernel::alloc::BlockCache;
 
 /// The native module.
 #[pymodule]

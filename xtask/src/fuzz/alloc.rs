@@ -9,7 +9,7 @@
 //! prints how to reproduce the input it was running first (see
 //! [`set_context`]). Cost: two relaxed atomic operations per call.
 
-use mesh_kernel::alloc::HugePages;
+use mesh_kernel::alloc::BlockCache;
 use std::alloc::{GlobalAlloc, Layout};
 use std::io::Write;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -40,7 +40,7 @@ pub fn limited<T>(f: impl FnOnce() -> T) -> T {
 /// What to print when an allocation is refused (the current fuzz input).
 static CONTEXT: Mutex<[u8; 256]> = Mutex::new([0; 256]);
 
-/// The workspace's allocator (`mesh_kernel::alloc::HugePages`, as the
+/// The workspace's allocator (`mesh_kernel::alloc::BlockCache`, as the
 /// `mesh` binary uses), counted.
 pub struct Counting;
 
@@ -99,19 +99,19 @@ fn write_number(out: &mut impl Write, mut n: usize) -> std::io::Result<()> {
     out.write_all(b" bytes")
 }
 
-// SAFETY: every call is forwarded to `HugePages` unchanged; only counters are
+// SAFETY: every call is forwarded to `BlockCache` unchanged; only counters are
 // updated around it, and a refused request returns null as the trait allows.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        self.counted(layout.size(), || HugePages.alloc(layout))
+        self.counted(layout.size(), || BlockCache.alloc(layout))
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        self.counted(layout.size(), || HugePages.alloc_zeroed(layout))
+        self.counted(layout.size(), || BlockCache.alloc_zeroed(layout))
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        HugePages.dealloc(ptr, layout);
+        BlockCache.dealloc(ptr, layout);
         CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
     }
 
@@ -120,7 +120,7 @@ unsafe impl GlobalAlloc for Counting {
         if new_size > old && !self.grow(new_size - old) {
             return std::ptr::null_mut();
         }
-        let p = HugePages.realloc(ptr, layout, new_size);
+        let p = BlockCache.realloc(ptr, layout, new_size);
         if p.is_null() {
             if new_size > old {
                 CURRENT.fetch_sub(new_size - old, Ordering::Relaxed);
