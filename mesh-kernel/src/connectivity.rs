@@ -75,25 +75,27 @@ pub struct Connectivity {
     boundary_loops: OnceLock<Vec<BoundaryLoop>>,
 }
 
-impl Connectivity {
-    /// Builds the connectivity of `faces` over `vertex_count` vertices. Indices
-    /// must be in range (as [`crate::TriMesh::new`] guarantees). Cost O(V + F).
-    pub fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
+/// The half-edges `3 f + k` grouped into buckets by their smaller endpoint
+/// (counting sort), each bucket sorted. An entry packs (larger endpoint,
+/// half-edge, starts at the smaller) into one u64, so that a bucket's runs
+/// of equal larger endpoint are its edges in order and the orientation of a
+/// pair is known with no further lookup. Past 2^31 half-edges the direction
+/// bit does not fit (`packed` is false): it is read from the corners instead.
+struct HalfedgeSort {
+    bucket_offsets: Vec<u32>,
+    sorted: Vec<u64>,
+    packed: bool,
+}
+
+impl HalfedgeSort {
+    fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
         let nh = faces.len() * 3;
-        let corner_vertex: Vec<VertexId> = faces.iter().flat_map(|f| f.map(VertexId)).collect();
         // Each half-edge's endpoints as (smaller, larger) and whether it
         // starts at the smaller, read face by face (twice, rather than kept).
         let ends = |f: &[u32; 3], k: usize| {
             let (a, b) = (f[k], f[(k + 1) % 3]);
             (a.min(b), a.max(b), a < b)
         };
-
-        // Counting sort of half-edges by their smaller endpoint; each entry
-        // packs (larger endpoint, half-edge, starts at the smaller) into one
-        // u64, so that sorting a bucket by it orders the bucket's edges, and
-        // the orientation of a pair is known, with no further lookup. (Past
-        // 2^31 half-edges the direction bit does not fit: it is read from
-        // the corners instead.)
         let packed = nh < 1 << 31;
         let mut bucket_offsets = vec![0u32; vertex_count + 1];
         for f in faces {
@@ -115,7 +117,49 @@ impl Connectivity {
                 fill[lo as usize] += 1;
             }
         }
-        drop(fill);
+        for lo in 0..vertex_count {
+            let bucket = &mut sorted[bucket_offsets[lo] as usize..bucket_offsets[lo + 1] as usize];
+            if bucket.len() > 1 {
+                bucket.sort_unstable();
+            }
+        }
+        Self { bucket_offsets, sorted, packed }
+    }
+}
+
+/// The edges of `faces` over `vertex_count` vertices, numbered as
+/// [`Connectivity::edges`] numbers them (endpoint pairs, smaller first,
+/// sorted), and the edge of every half-edge `3 f + k` (from corner `k` of
+/// face `f` to corner `k + 1`), without the rest of the half-edge
+/// structure: for callers that only need the edge numbering (midpoint
+/// subdivision), on any mesh, manifold or not. Indices must be in range.
+/// Cost O(V + F).
+pub fn number_edges(vertex_count: usize, faces: &[[u32; 3]]) -> (Vec<[u32; 2]>, Vec<u32>) {
+    let HalfedgeSort { bucket_offsets, sorted, packed } = HalfedgeSort::new(vertex_count, faces);
+    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(sorted.len() / 2 + 1);
+    let mut halfedge_edge = vec![0u32; sorted.len()];
+    for lo in 0..vertex_count {
+        let mut last = u32::MAX;
+        for &x in &sorted[bucket_offsets[lo] as usize..bucket_offsets[lo + 1] as usize] {
+            let hi = (x >> 32) as u32;
+            if hi != last {
+                edges.push([lo as u32, hi]);
+                last = hi;
+            }
+            let h = if packed { (x as u32) >> 1 } else { x as u32 };
+            halfedge_edge[h as usize] = (edges.len() - 1) as u32;
+        }
+    }
+    (edges, halfedge_edge)
+}
+
+impl Connectivity {
+    /// Builds the connectivity of `faces` over `vertex_count` vertices. Indices
+    /// must be in range (as [`crate::TriMesh::new`] guarantees). Cost O(V + F).
+    pub fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
+        let nh = faces.len() * 3;
+        let corner_vertex: Vec<VertexId> = faces.iter().flat_map(|f| f.map(VertexId)).collect();
+        let HalfedgeSort { bucket_offsets, sorted, packed } = HalfedgeSort::new(vertex_count, faces);
         let hi_of = |x: u64| (x >> 32) as u32;
         let h_of = |x: u64| HalfedgeId(if packed { (x as u32) >> 1 } else { x as u32 });
         let starts_low = |x: u64, lo: usize| if packed { x & 1 == 1 } else { corner_vertex[h_of(x).idx()].idx() == lo };
@@ -129,10 +173,6 @@ impl Connectivity {
         for lo in 0..vertex_count {
             let bucket_end = bucket_offsets[lo + 1] as usize;
             let mut start = bucket_offsets[lo] as usize;
-            let bucket = &mut sorted[start..bucket_end];
-            if bucket.len() > 1 {
-                bucket.sort_unstable();
-            }
             while start < bucket_end {
                 let hi = hi_of(sorted[start]);
                 let mut end = start + 1;

@@ -105,16 +105,15 @@ pub fn icosphere(level: u32) -> Result<TriMesh> {
 /// corner triangles of face `f` at `4 f`, `4 f + 1`, `4 f + 2` and the
 /// middle one at `4 f + 3`. Cost O(V + F).
 pub fn midpoint_subdivide(mesh: &TriMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let conn = mesh.connectivity();
+    let (edges, halfedge_edge) = crate::connectivity::number_edges(mesh.vertex_count(), mesh.faces());
     let n = mesh.vertex_count() as u32;
     let p = mesh.positions();
-    let mut positions = Vec::with_capacity(p.len() + conn.edge_count());
+    let mut positions = Vec::with_capacity(p.len() + edges.len());
     positions.extend_from_slice(p);
-    positions.extend(conn.edges().iter().map(|[a, b]| (p[a.idx()] + p[b.idx()]) * 0.5));
+    positions.extend(edges.iter().map(|&[a, b]| (p[a as usize] + p[b as usize]) * 0.5));
     let mut faces = Vec::with_capacity(4 * mesh.face_count());
-    for f in mesh.face_ids() {
-        let [a, b, c] = mesh.faces()[f.idx()];
-        let [eab, ebc, eca] = conn.face_edges(f).map(|e| n + e.0);
+    for (&[a, b, c], e) in mesh.faces().iter().zip(halfedge_edge.chunks_exact(3)) {
+        let [eab, ebc, eca] = [n + e[0], n + e[1], n + e[2]];
         faces.push([a, eab, eca]);
         faces.push([b, ebc, eab]);
         faces.push([c, eca, ebc]);

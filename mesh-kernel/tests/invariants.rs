@@ -4,7 +4,7 @@
 use mesh_kernel::clean::{self, CleanOptions};
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::operators::{self, IntrinsicOptions, IntrinsicTriangulation};
-use mesh_kernel::{shapes, HalfedgeId, TriMesh, VertexId, VertexKind};
+use mesh_kernel::{shapes, Connectivity, FaceId, HalfedgeId, TriMesh, VertexId, VertexKind};
 use proptest::prelude::*;
 
 /// A planar grid of `nx` x `ny` cells, each split along a random diagonal,
@@ -209,6 +209,24 @@ fn brute_force_kind(faces: &[[u32; 3]], v: u32) -> VertexKind {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The lean edge numbering (midpoint subdivision's) is the half-edge
+    /// structure's, on soups that are mostly not manifold.
+    #[test]
+    fn edge_numbering_matches_connectivity(
+        raw in proptest::collection::vec((0u32..9, 0u32..9, 0u32..9), 0..30),
+    ) {
+        let faces: Vec<[u32; 3]> =
+            raw.into_iter().map(|(a, b, c)| [a, b, c]).filter(|[a, b, c]| a != b && b != c && a != c).collect();
+        let c = Connectivity::new(9, &faces);
+        let (edges, halfedge_edge) = mesh_kernel::connectivity::number_edges(9, &faces);
+        let theirs: Vec<[u32; 2]> = c.edges().iter().map(|e| [e[0].0, e[1].0]).collect();
+        prop_assert_eq!(edges, theirs);
+        for f in 0..faces.len() {
+            let ours = [halfedge_edge[3 * f], halfedge_edge[3 * f + 1], halfedge_edge[3 * f + 2]];
+            prop_assert_eq!(ours, c.face_edges(FaceId::new(f)).map(|e| e.0));
+        }
+    }
 
     #[test]
     fn vertex_kinds_match_their_definition(

@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::hierarchy::{check_size, split_faces};
 use crate::rules::{self, Scratch};
 use crate::scheme::Scheme;
-use crate::topology::{manifold_topology, Topology};
+use crate::topology::manifold_topology;
 
 /// Options of [`subdivide`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,27 +48,29 @@ pub fn subdivide(mesh: &TriMesh, options: &SubdivideOptions) -> Result<TriMesh> 
         return Err(MeshError::Empty.into());
     }
     check_size(mesh.face_count(), levels)?;
-    let mut current = mesh.clone();
-    for _ in 0..levels {
+    if levels == 0 {
+        return Ok(mesh.clone());
+    }
+    let mut current = split_once(mesh, scheme)?;
+    for _ in 1..levels {
         current = split_once(&current, scheme)?;
     }
     Ok(current)
 }
 
-/// One level on the lean topology (same numbering as
-/// [`mesh_kernel::shapes::midpoint_subdivide`], which handles the midpoint
-/// scheme on non-manifold meshes). The masks are those of the filter banks'
+/// One level: the midpoint scheme by
+/// [`mesh_kernel::shapes::midpoint_subdivide`] (it needs only the edge
+/// numbering, on any mesh), Loop and butterfly on the lean topology (same
+/// numbering). The masks are those of the filter banks'
 /// predict steps, applied directly; with zero coefficients the synthesis
 /// step gives the same positions (tested through the matrix P).
 fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
-    let topo = match Topology::new(mesh.vertex_count(), mesh.faces()) {
-        Ok(t) => t,
-        Err(_) if scheme == Scheme::Midpoint => {
-            let (p, f) = shapes::midpoint_subdivide(mesh);
-            return Ok(TriMesh::new(p, f)?);
-        }
-        Err(_) => manifold_topology(mesh.vertex_count(), mesh.faces())?,
-    };
+    if scheme == Scheme::Midpoint {
+        // Only the edge numbering is needed, on any mesh.
+        let (p, f) = shapes::midpoint_subdivide(mesh);
+        return Ok(TriMesh::new(p, f)?);
+    }
+    let topo = manifold_topology(mesh.vertex_count(), mesh.faces())?;
     let (n, p) = (mesh.vertex_count(), mesh.positions());
     let mut positions = Vec::with_capacity(n + topo.edge_count());
     match scheme {
