@@ -328,10 +328,18 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
     let (n, faces, p) = (mesh.vertex_count(), mesh.faces(), mesh.positions());
     let corners = |f: usize| scaled_corners(p, faces[f], per_unit);
     let mut normals = match weighting {
-        // The common case on its own, where the compiler keeps it short.
-        NormalWeighting::Area => {
-            par::scatter(n, faces, DVec3::ZERO, |f| [double_area_vector(corners(f)); 3], |sum, w| *sum += w)
-        }
+        // The common case on its own, with its closures inlined into the
+        // loop by force: left to the compiler they were calls returning
+        // through memory, 1.3-1.5x slower (2026-12-03).
+        NormalWeighting::Area => par::scatter(
+            n,
+            faces,
+            DVec3::ZERO,
+            #[inline(always)]
+            |f| [double_area_vector(corners(f)); 3],
+            #[inline(always)]
+            |sum, w| *sum += w,
+        ),
         NormalWeighting::Max => {
             // With the area-weighted sum beside, for where Max's sum vanishes.
             let sums = par::scatter(
