@@ -127,15 +127,15 @@ impl HalfedgeSort {
     }
 }
 
-/// The edges of `faces` over `vertex_count` vertices, numbered as
-/// [`Connectivity::edges`] numbers them (endpoint pairs, smaller first,
-/// sorted), and the edge of every half-edge `3 f + k` (from corner `k` of
-/// face `f` to corner `k + 1`), without the rest of the half-edge
-/// structure: for callers that only need the edge numbering (midpoint
-/// subdivision), on any mesh, manifold or not. Indices must be in range.
-/// Cost O(V + F).
-pub fn number_edges(vertex_count: usize, faces: &[[u32; 3]]) -> (Vec<[u32; 2]>, Vec<u32>) {
-    let HalfedgeSort { bucket_offsets, sorted, packed } = HalfedgeSort::new(vertex_count, faces);
+/// The edges of a mesh, numbered as [`Connectivity::edges`] numbers them
+/// (endpoint pairs, smaller first, sorted), and the edge of every half-edge
+/// `3 f + k` (from corner `k` of face `f` to corner `k + 1`), without the
+/// rest of the half-edge structure: for callers that only need the edge
+/// numbering (midpoint subdivision), on any mesh, manifold or not. Cost
+/// O(V + F).
+pub fn number_edges(mesh: &crate::TriMesh) -> (Vec<[u32; 2]>, Vec<u32>) {
+    let vertex_count = mesh.vertex_count();
+    let HalfedgeSort { bucket_offsets, sorted, packed } = HalfedgeSort::new(vertex_count, mesh.faces());
     let mut edges: Vec<[u32; 2]> = Vec::with_capacity(sorted.len() / 2 + 1);
     let mut halfedge_edge = vec![0u32; sorted.len()];
     for lo in 0..vertex_count {

@@ -105,7 +105,7 @@ pub fn icosphere(level: u32) -> Result<TriMesh> {
 /// corner triangles of face `f` at `4 f`, `4 f + 1`, `4 f + 2` and the
 /// middle one at `4 f + 3`. Cost O(V + F).
 pub fn midpoint_subdivide(mesh: &TriMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let (edges, halfedge_edge) = crate::connectivity::number_edges(mesh.vertex_count(), mesh.faces());
+    let (edges, halfedge_edge) = crate::connectivity::number_edges(mesh);
     let n = mesh.vertex_count() as u32;
     let p = mesh.positions();
     let mut positions = Vec::with_capacity(p.len() + edges.len());
