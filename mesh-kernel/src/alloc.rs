@@ -83,8 +83,9 @@ fn mapped_len(size: usize) -> usize {
     size.div_ceil(GRANULE) * GRANULE
 }
 
-/// Gives every kept block back to the kernel; returns the bytes released.
-/// For long-running programs after a large computation (the kept blocks
+/// Gives every kept block back to the kernel; returns the bytes released
+/// (0 as well when another thread is using the cache at that moment). For
+/// long-running programs after a large computation (the kept blocks
 /// otherwise stay mapped until they are reused or the process ends).
 pub fn release() -> usize {
     #[cfg(target_os = "linux")]
@@ -191,6 +192,11 @@ mod kept {
         bytes: usize,
     }
 
+    /// Only ever `try_lock`ed: a call that finds it busy maps or unmaps
+    /// directly instead of waiting. Besides never blocking an allocation,
+    /// that keeps a child process forked while another thread held the
+    /// lock (Python's `multiprocessing`, Dask) from hanging on its first
+    /// large allocation: it bypasses the cache instead.
     static KEPT: Mutex<Kept> = Mutex::new(Kept { blocks: [(0, 0); SLOTS], bytes: 0 });
 
     impl Kept {
@@ -212,7 +218,7 @@ mod kept {
     /// aligned to `align`, cut to `len` bytes (the rest goes back to the
     /// kernel); null when there is none.
     pub(super) fn take(len: usize, align: usize) -> *mut u8 {
-        let Ok(mut kept) = KEPT.lock() else { return std::ptr::null_mut() };
+        let Ok(mut kept) = KEPT.try_lock() else { return std::ptr::null_mut() };
         let fits = |&(p, l): &(usize, usize)| p != 0 && l >= len && p.is_multiple_of(align);
         let best = (0..SLOTS).filter(|&i| fits(&kept.blocks[i])).min_by_key(|&i| kept.blocks[i].1);
         let Some(i) = best else { return std::ptr::null_mut() };
@@ -235,7 +241,7 @@ mod kept {
     /// grown by [`map::remap`]) and no longer used.
     pub(super) unsafe fn keep(ptr: *mut u8, len: usize) {
         if len <= KEPT_LARGE {
-            if let Ok(mut kept) = KEPT.lock() {
+            if let Ok(mut kept) = KEPT.try_lock() {
                 while kept.bytes + len > KEPT_LARGE || kept.blocks.iter().all(|b| b.0 != 0) {
                     let Some(i) = kept.largest() else { break };
                     let (p, l) = kept.remove(i);
@@ -251,9 +257,15 @@ mod kept {
         map::unmap(ptr, len);
     }
 
+    /// Holds the cache's lock (tests: what a forked child may find).
+    #[cfg(test)]
+    pub(super) fn hold() -> std::sync::MutexGuard<'static, impl Sized> {
+        KEPT.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
     /// Releases every kept block; returns the bytes released.
     pub(super) fn release() -> usize {
-        let Ok(mut kept) = KEPT.lock() else { return 0 };
+        let Ok(mut kept) = KEPT.try_lock() else { return 0 };
         let bytes = kept.bytes;
         for i in 0..SLOTS {
             if kept.blocks[i].0 != 0 {
@@ -405,6 +417,19 @@ mod tests {
             }
             assert_eq!(release(), mapped_len(layout.size()));
             assert_eq!(release(), 0);
+            // With the cache's lock held (as in a child forked while another
+            // thread held it), blocks are mapped and unmapped directly.
+            {
+                let _held = kept::hold();
+                // SAFETY: allocated and released with the same layout.
+                unsafe {
+                    let p = BlockCache.alloc(layout);
+                    assert!(!p.is_null());
+                    std::ptr::write_bytes(p, 1, layout.size());
+                    BlockCache.dealloc(p, layout);
+                }
+                assert_eq!(release(), 0, "nothing kept, no wait");
+            }
             // A block larger than the cache goes straight back (never
             // touched, so it commits no memory).
             let huge = Layout::from_size_align(KEPT_LARGE + 1, 8).unwrap();
