@@ -83,6 +83,8 @@ fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
     for (e, &[a, b]) in topo.edges().iter().enumerate() {
         let (pa, pb) = (p[a as usize], p[b as usize]);
         let odd = match scheme {
+            // Not reached (the midpoint scheme returned above); its rule, so
+            // that the match names every scheme without a panic.
             Scheme::Midpoint => (pa + pb) * 0.5,
             Scheme::Loop => {
                 // The mask of rules::odd_mask, inlined.
