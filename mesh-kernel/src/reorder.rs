@@ -46,14 +46,7 @@ impl Reordering {
     /// (ties keep the input order). Unreferenced vertices are ordered like
     /// the others. Cost O(V log V + F).
     pub fn spatial(mesh: &TriMesh) -> Self {
-        let p = mesh.positions();
-        let keys: Vec<u64> = match Aabb::of(p) {
-            Some(b) => p.iter().map(|&x| hilbert_key(grid_cell(x, &b))).collect(),
-            None => Vec::new(),
-        };
-        let mut vertex_order: Vec<u32> = (0..p.len() as u32).collect();
-        vertex_order.sort_unstable_by_key(|&v| (keys[v as usize], v));
-        Self::from_vertex_order(mesh, vertex_order)
+        Self::from_vertex_order(mesh, hilbert_order(mesh.positions()))
     }
 
     /// The reordering that puts vertices in `vertex_order` (old index of
@@ -181,6 +174,18 @@ fn gather<T: Clone>(values: &[T], index: &[u32], what: &str) -> Result<Vec<T>> {
         return Err(MeshError::Dimension(format!("{} values for {} {what}s", values.len(), index.len())));
     }
     Ok(index.iter().map(|&i| values[i as usize].clone()).collect())
+}
+
+/// The points' indices along a Hilbert curve through their bounding box
+/// (ties keep the input order). Cost O(n log n).
+pub(crate) fn hilbert_order(p: &[DVec3]) -> Vec<u32> {
+    let keys: Vec<u64> = match Aabb::of(p) {
+        Some(b) => p.iter().map(|&x| hilbert_key(grid_cell(x, &b))).collect(),
+        None => Vec::new(),
+    };
+    let mut order: Vec<u32> = (0..p.len() as u32).collect();
+    order.sort_unstable_by_key(|&v| (keys[v as usize], v));
+    order
 }
 
 /// The cell of `x` on the grid of 2^BITS cells per axis over `b`; a flat

@@ -8,6 +8,7 @@
 //! cargo run --release -p mesh-spectral --example eigs -- FILE.off 20
 //! ```
 //!
+//! `EIGS_ORDERING=dissection` orders the factor by the vertices' positions.
 //! `EIGS_BLOCK`, `EIGS_BASIS`, `EIGS_GUARD`, `EIGS_SHIFT` override the
 //! corresponding [`EigenOptions`] fields (for tuning); `EIGS_LAPLACIAN`
 //! (auto, cotan, intrinsic) and `EIGS_COMPONENT` (all, largest) choose the
@@ -23,7 +24,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{eigenpairs, pencil, ComponentSelection, EigenOptions, LaplacianKind, MassKind};
+use mesh_spectral::{eigenpairs, pencil, ComponentSelection, EigenOptions, FillOrdering, LaplacianKind, MassKind};
 
 fn main() -> ExitCode {
     match run() {
@@ -68,6 +69,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         basis_size: env("EIGS_BASIS").map(|v| v as usize),
         guard: env("EIGS_GUARD").map(|v| v as usize),
         shift: env("EIGS_SHIFT"),
+        ordering: (text("EIGS_ORDERING", "auto") == "dissection").then(|| FillOrdering::of_points(mesh.positions())),
         ..EigenOptions::default()
     };
     let pairs = eigenpairs(&l, &p.mass, k, &options)?;

@@ -13,6 +13,7 @@
 
 use faer::{Accum, Mat, MatRef};
 use glam::DVec3;
+use mesh_kernel::solver::FillOrdering;
 use mesh_kernel::TriMesh;
 use sprs::CsMat;
 
@@ -87,7 +88,10 @@ impl ManifoldHarmonics {
                 ),
             });
         }
-        let pairs = eigenpairs(&p.laplacian, &mass, k, &options.eigen)?;
+        let ordering =
+            Some(options.eigen.ordering.clone().unwrap_or_else(|| FillOrdering::of_points(mesh.positions())));
+        let eigen = EigenOptions { ordering, ..options.eigen.clone() };
+        let pairs = eigenpairs(&p.laplacian, &mass, k, &eigen)?;
         Ok(Self { pairs, mass, info: Some(p.info) })
     }
 

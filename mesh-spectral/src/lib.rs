@@ -51,6 +51,7 @@ pub use harmonics::{HarmonicsOptions, ManifoldHarmonics};
 pub use hks::{heat_kernel_signature, heat_trace, hks_times};
 /// The choices of Laplacian and mass, shared with every crate of the workspace.
 pub use mesh_kernel::operators::{LaplacianKind, MassKind};
+pub use mesh_kernel::solver::FillOrdering;
 pub use operators::{laplace_beltrami, pencil, OperatorInfo, Pencil};
 
 /// The data model this crate works on, so that one dependency line is enough.

@@ -53,7 +53,7 @@ mod status;
 
 use mesh_kernel::glam::DVec2;
 use mesh_kernel::operators::{IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
-use mesh_kernel::solver::Cholesky;
+use mesh_kernel::solver::{Cholesky, FillOrdering};
 use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
 use crate::error::{GeodesicError, Result};
@@ -266,7 +266,7 @@ impl HeatGeodesics {
         let mass: Vec<f64> = mass.iter().map(|m| m / (mean_edge * mean_edge)).collect();
         let heat_matrix = shifted(&laplacian, options.time_factor, &mass, &isolated);
         let ceiling = heat_ceiling(&heat_matrix);
-        let heat = Cholesky::new(&heat_matrix)?;
+        let heat = Cholesky::with_ordering(&heat_matrix, &FillOrdering::of_points(mesh.positions()))?;
         let boundary: Vec<bool> = (0..n).map(|v| conn.is_boundary_vertex(VertexId::new(v))).collect();
         let dirichlet = if options.boundary != HeatBoundary::Neumann && boundary.iter().any(|b| *b) {
             let mut factor = heat.clone();

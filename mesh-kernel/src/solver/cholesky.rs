@@ -5,22 +5,71 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::SymbolicSupernodalParams;
 use faer::sparse::SparseColMat;
 use faer::{Conj, MatMut, Side, Spec};
+use glam::DVec3;
 use sprs::CsMat;
 
+use super::dissection::nested_dissection;
 use super::supernodal::Supernodes;
-use super::{check_rhs, check_square, memory, parallelism, to_faer, SUPERNODAL_FROM};
+use super::{check_rhs, check_square, memory, parallelism, to_faer, DISSECTION_FROM, SUPERNODAL_FROM};
 use crate::error::{MeshError, Result};
 
+/// How [`Cholesky`] orders the unknowns to keep its factor small.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub enum FillOrdering {
+    /// Approximate minimum degree (faer's): for any matrix.
+    #[default]
+    MinimumDegree,
+    /// Geometric nested dissection (George 1973) of unknowns that sit at
+    /// points in space, one point per row: a mesh's vertices. From
+    /// [`DISSECTION_FROM`] unknowns (minimum degree below); on meshes of
+    /// 4e4-5e5 vertices it makes the factor 15-30% smaller
+    /// (BENCHMARKS.md, "Nested dissection").
+    Dissection(Arc<[DVec3]>),
+}
+
+impl FillOrdering {
+    /// Geometric nested dissection of a mesh's vertices.
+    pub fn of_points(points: &[DVec3]) -> Self {
+        Self::Dissection(points.into())
+    }
+
+    /// The ordering of a sub-problem made of the unknowns `rows` (in that
+    /// order) of this one, e.g. one connected component. A row without a
+    /// point gives [`FillOrdering::MinimumDegree`] (only the speed depends
+    /// on the ordering).
+    pub fn restrict(&self, rows: &[usize]) -> Self {
+        match self {
+            Self::MinimumDegree => Self::MinimumDegree,
+            Self::Dissection(points) => rows
+                .iter()
+                .map(|&r| points.get(r).copied())
+                .collect::<Option<Arc<[DVec3]>>>()
+                .map_or(Self::MinimumDegree, Self::Dissection),
+        }
+    }
+}
+
+/// Supernode amalgamation of faer's symbolic analysis: two supernodes of
+/// `n` columns in all merge when the zeros this adds are a fraction below
+/// `z` of the merged one. faer's default (`(16, 0.8)` second) pads
+/// nested-dissection factors of meshes by a third; these thresholds cut the
+/// padding to a fifth and the single solve by 10-20% (BENCHMARKS.md,
+/// "Nested dissection").
+const RELAX: &[(usize, f64)] = &[(4, 1.0), (16, 0.2), (48, 0.05), (usize::MAX, 0.02)];
+
 /// Sparse Cholesky factorization `P A P^T = L L^T` of a symmetric positive
-/// definite matrix (only its lower triangle is read), with AMD fill-reducing
-/// ordering `P`, the supernodal variant from [`SUPERNODAL_FROM`] unknowns and
-/// one thread below [`super::PARALLEL_FROM`].
+/// definite matrix (only its lower triangle is read), with a fill-reducing
+/// ordering `P` ([`FillOrdering`], minimum degree unless told), the
+/// supernodal variant from [`SUPERNODAL_FROM`] unknowns and one thread below
+/// [`super::PARALLEL_FROM`].
 ///
 /// Solves take one right-hand side, several stacked column after column
 /// ([`Cholesky::solve_in_place`]), or blocks of `W` stored row by row
@@ -42,24 +91,53 @@ pub struct Cholesky {
 }
 
 impl Cholesky {
-    /// Analyses and factors `a`. Cost: one symbolic analysis plus one numeric
-    /// factorization (for a 40k-vertex Laplacian about 0.1 s on a 2-core
-    /// x86-64 machine). Fails when `a` is not positive definite.
+    /// Analyses and factors `a` with the minimum-degree ordering. Cost: one
+    /// symbolic analysis plus one numeric factorization (for a 40k-vertex
+    /// Laplacian about 0.1 s on a 2-core x86-64 machine). Fails when `a` is
+    /// not positive definite.
     ///
     /// # Errors
     /// [`MeshError::Dimension`] for a matrix that is not square; [`MeshError::Solver`] when it is
     /// not symmetric positive definite (naming the failing pivot), has a non-finite entry, or
     /// memory runs out.
     pub fn new(a: &CsMat<f64>) -> Result<Self> {
-        check_square(a)?;
+        Self::with_ordering(a, &FillOrdering::MinimumDegree)
+    }
+
+    /// Analyses and factors `a` with the given fill-reducing ordering.
+    ///
+    /// # Errors
+    /// Those of [`Cholesky::new`]; [`MeshError::Dimension`] when a
+    /// [`FillOrdering::Dissection`] does not have one point per row.
+    pub fn with_ordering(a: &CsMat<f64>, ordering: &FillOrdering) -> Result<Self> {
+        let n = check_square(a)?;
         let a = to_faer(a)?;
-        let threshold = if a.nrows() >= SUPERNODAL_FROM {
-            SupernodalThreshold::FORCE_SUPERNODAL
-        } else {
-            SupernodalThreshold::AUTO
+        let threshold =
+            if n >= SUPERNODAL_FROM { SupernodalThreshold::FORCE_SUPERNODAL } else { SupernodalThreshold::AUTO };
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: threshold,
+            supernodal_params: SymbolicSupernodalParams { relax: Some(RELAX) },
+            ..Default::default()
         };
-        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
-        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Amd, params)
+        let (forward, inverse);
+        let ordering = match ordering {
+            FillOrdering::MinimumDegree => SymmetricOrdering::Amd,
+            FillOrdering::Dissection(points) if points.len() != n => {
+                return Err(MeshError::Dimension(format!("{} points for {n} unknowns", points.len())));
+            }
+            // (The dissection's adjacency has 32-bit indices.)
+            FillOrdering::Dissection(_) if !(DISSECTION_FROM..u32::MAX as usize).contains(&n) => SymmetricOrdering::Amd,
+            FillOrdering::Dissection(points) => {
+                forward = nested_dissection(a.symbolic().col_ptr(), a.symbolic().row_idx(), points);
+                let mut inv = vec![0; n];
+                for (i, &v) in forward.iter().enumerate() {
+                    inv[v] = i;
+                }
+                inverse = inv;
+                SymmetricOrdering::Custom(PermRef::new_checked(&forward, &inverse, n))
+            }
+        };
+        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, params)
             .map_err(|e| MeshError::Solver(format!("symbolic Cholesky failed: {e:?}")))?;
         let pattern = (a.symbolic().col_ptr().to_vec(), a.symbolic().row_idx().to_vec());
         let order = match symbolic.perm() {

@@ -16,6 +16,7 @@ use super::shift_invert::ShiftInvert;
 use super::shift_invert::LANES;
 use super::{dense, EigenOptions, EigenSolver, EigenStats};
 use crate::error::{Result, SpectralError};
+use mesh_kernel::solver::FillOrdering;
 
 /// The pairs of one component, before merging: values ascending, vectors
 /// over the component's vertices, their quality.
@@ -147,14 +148,15 @@ impl BlockOperator for Deflated<'_> {
 /// Factors `L - sigma M` for the first sigma that works: `preferred`
 /// (the user's shift, if any, is never changed), then ten times further
 /// from the spectrum, up to 8 times.
-fn factor(c: &Component, preferred: f64, fixed: bool) -> Result<ShiftInvert> {
+fn factor(c: &Component, preferred: f64, fixed: bool, ordering: Option<&FillOrdering>) -> Result<ShiftInvert> {
+    let ordering = ordering.map_or(FillOrdering::MinimumDegree, |o| o.restrict(&c.vertices));
     if fixed {
-        return ShiftInvert::new(c, preferred);
+        return ShiftInvert::new(c, preferred, &ordering);
     }
     let mut shift = preferred;
     let mut last = None;
     for _ in 0..8 {
-        match ShiftInvert::new(c, shift) {
+        match ShiftInvert::new(c, shift, &ordering) {
             Ok(op) => return Ok(op),
             Err(e) => last = Some(e),
         }
@@ -192,7 +194,7 @@ fn krylov_component(
     for attempt in 1..=MAX_ATTEMPTS {
         if op.as_ref().is_none_or(|o| o.shift() != shift) {
             let t = Instant::now();
-            let factored = factor(c, shift, options.shift.is_some())?;
+            let factored = factor(c, shift, options.shift.is_some(), options.ordering.as_ref())?;
             stats.factor_seconds += t.elapsed().as_secs_f64();
             shift = factored.shift();
             op = Some(factored);

@@ -18,7 +18,7 @@ use std::borrow::Cow;
 use std::sync::Mutex;
 
 use faer::{Mat, MatRef};
-use mesh_kernel::solver::Cholesky;
+use mesh_kernel::solver::{Cholesky, FillOrdering};
 
 use super::problem::Component;
 use crate::error::{Result, SpectralError};
@@ -50,9 +50,9 @@ impl ShiftInvert {
     ///
     /// # Errors
     /// `SpectralError::Mesh` (`MeshError::Solver`) when the shifted matrix cannot be factorized.
-    pub fn new(c: &Component, shift: f64) -> Result<Self> {
+    pub fn new(c: &Component, shift: f64, ordering: &FillOrdering) -> Result<Self> {
         let k = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
-        let chol = Cholesky::new(&k)?;
+        let chol = Cholesky::with_ordering(&k, ordering)?;
         let mut rows = Vec::with_capacity(c.massive);
         let coords = chol
             .order()

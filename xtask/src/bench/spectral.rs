@@ -14,7 +14,7 @@ use mesh_io::MeshData;
 use mesh_kernel::glam::DVec3;
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::TriMesh;
-use mesh_spectral::{compress, eigenpairs, EigenOptions, HarmonicsOptions, ManifoldHarmonics};
+use mesh_spectral::{compress, eigenpairs, EigenOptions, FillOrdering, HarmonicsOptions, ManifoldHarmonics};
 
 use super::Operation;
 
@@ -37,8 +37,11 @@ pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>>
     let m = operators::lumped_mass(mesh, MassKind::MixedVoronoi);
     let cell = Basis::default();
     let (forward, inverse, compressed) = (cell.clone(), cell.clone(), cell);
+    // The pencil of the mesh, ordered by its vertices (what
+    // `ManifoldHarmonics` does); scipy's eigsh gets the same two matrices.
+    let options = EigenOptions { ordering: Some(FillOrdering::of_points(mesh.positions())), ..EigenOptions::default() };
     vec![
-        Operation::new("eigs20", move || Ok(eigenpairs(&l, &m, 20, &EigenOptions::default())?)),
+        Operation::new("eigs20", move || Ok(eigenpairs(&l, &m, 20, &options)?)),
         Operation::new("harmonics_forward_20", move || {
             Ok(basis(&forward, mesh)?.0.forward_points(mesh.positions())?)
         }),

@@ -1,18 +1,22 @@
 //! mesh-spectral: the unit icosphere's spectrum l (l + 1) with every copy of
 //! each (2 l + 1)-fold eigenvalue and scipy's eigsh values on the same
 //! matrices, the flat disk's Neumann eigenvalues converging under
-//! refinement, residuals and M-orthonormality of the pairs, compression
-//! error monotone in the number of kept coefficients.
+//! refinement, residuals and M-orthonormality of the pairs, the same pairs
+//! whatever the factor's fill-reducing ordering, compression error
+//! monotone in the number of kept coefficients.
 
 use mesh_kernel::operators::{self, MassKind};
 use mesh_kernel::{shapes, TriMesh};
-use mesh_spectral::{compression_curve, eigenpairs, EigenOptions, Eigenpairs, HarmonicsOptions, ManifoldHarmonics};
+use mesh_spectral::{
+    compression_curve, eigenpairs, EigenOptions, Eigenpairs, FillOrdering, HarmonicsOptions, ManifoldHarmonics,
+};
 
 use super::{convergence_order, no_shared_data, shared_data, Validator};
 
 /// Runs the mesh-spectral checks.
 pub fn run(v: &mut Validator) {
     sphere(v);
+    orderings(v);
     disk(v);
     compression(v);
 }
@@ -110,6 +114,36 @@ fn sphere(v: &mut Validator) {
     if errors.len() == 2 {
         v.at_least("icosphere(4..5): observed order vs l(l+1)", convergence_order(&errors), 1.8);
     }
+}
+
+/// icosphere(6) (40,962 vertices, above `DISSECTION_FROM`): the 20 smallest
+/// pairs with the factor ordered by nested dissection of the vertices equal
+/// those with minimum degree to 1e-9 relative, with the same quality bounds.
+fn orderings(v: &mut Validator) {
+    let name = "icosphere(6), nested dissection";
+    let Ok(mesh) = shapes::icosphere(6) else {
+        return v.error(format!("{name}: mesh"), "icosphere(6) failed");
+    };
+    let (minimum_degree, mass) = match solve(&mesh, 20) {
+        Ok(x) => x,
+        Err(e) => return v.error(format!("{name}: minimum-degree pairs"), e),
+    };
+    let l = operators::cotan_laplacian(&mesh);
+    let options = EigenOptions { ordering: Some(FillOrdering::of_points(mesh.positions())), ..EigenOptions::default() };
+    let dissection = match eigenpairs(&l, &mass, 20, &options) {
+        Ok(x) => x,
+        Err(e) => return v.error(format!("{name}: pairs"), e),
+    };
+    let rel = (1..20)
+        .map(|j| (dissection.values[j] - minimum_degree.values[j]).abs() / minimum_degree.values[j])
+        .fold(0.0, f64::max);
+    v.at_most(format!("{name}: max rel. difference vs minimum degree"), rel, 1e-9);
+    v.at_most(
+        format!("{name}: factor entries / minimum degree's"),
+        dissection.stats.factor_nonzeros as f64 / minimum_degree.stats.factor_nonzeros as f64,
+        0.9,
+    );
+    pair_quality(v, name, &dissection, &mass);
 }
 
 /// The 8 smallest Neumann eigenvalues of the unit disk, (j'_{m,k})^2 with
