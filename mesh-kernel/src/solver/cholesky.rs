@@ -30,7 +30,7 @@ pub enum FillOrdering {
     /// Geometric nested dissection (George 1973) of unknowns that sit at
     /// points in space, one point per row: a mesh's vertices. From
     /// [`DISSECTION_FROM`] unknowns (minimum degree below); on meshes of
-    /// 4e4-5e5 vertices it makes the factor 15-30% smaller
+    /// 3e4-5e5 vertices it made the factor 11-28% smaller
     /// (BENCHMARKS.md, "Nested dissection").
     Dissection(Arc<[DVec3]>),
 }
@@ -59,10 +59,10 @@ impl FillOrdering {
 
 /// Supernode amalgamation of faer's symbolic analysis: two supernodes of
 /// `n` columns in all merge when the zeros this adds are a fraction below
-/// `z` of the merged one. faer's default (`(16, 0.8)` second) pads
-/// nested-dissection factors of meshes by a third; these thresholds cut the
-/// padding to a fifth and the single solve by 10-20% (BENCHMARKS.md,
-/// "Nested dissection").
+/// `z` of the merged one. faer's default (`(16, 0.8)` second) padded
+/// nested-dissection factors of meshes with a third more entries than the
+/// exact factor; these thresholds bring the padding under a quarter and
+/// take 10-20% off a single solve (BENCHMARKS.md, "Nested dissection").
 const RELAX: &[(usize, f64)] = &[(4, 1.0), (16, 0.2), (48, 0.05), (usize::MAX, 0.02)];
 
 /// Sparse Cholesky factorization `P A P^T = L L^T` of a symmetric positive

@@ -6,13 +6,17 @@
 //!   eigensolvers). From [`SUPERNODAL_FROM`] unknowns the factor is
 //!   supernodal and solved by this module's own triangular solves, which
 //!   take blocks of right-hand sides row by row ([`Cholesky::solve_rows`]).
+//! - [`FillOrdering`]: how the factor orders the unknowns: faer's minimum
+//!   degree for any matrix, or a geometric nested dissection of unknowns
+//!   placed at a mesh's vertices (from [`DISSECTION_FROM`] unknowns).
 //! - [`Lu`]: sparse LU with partial pivoting for non-symmetric systems (the
 //!   asymmetric parameterization weights).
 //! - [`DirichletSolver`]: fix some unknowns, factor the rest once, solve for
 //!   any boundary values and right-hand sides.
 //!
 //! One tuning policy for every crate: the supernodal factor from
-//! [`SUPERNODAL_FROM`] unknowns, threads from [`PARALLEL_FROM`].
+//! [`SUPERNODAL_FROM`] unknowns, the dissection (when points are given)
+//! from [`DISSECTION_FROM`], threads from [`PARALLEL_FROM`].
 //!
 //! Matrices come in as `sprs::CsMat<f64>` (CSR or CSC); conversion to faer is
 //! a copy of the raw arrays. Factorization errors (not positive definite,
