@@ -237,6 +237,10 @@ impl Work {
         best.map(|(_, a, below)| (axes[a], below))
     }
 
+    /// Puts the `mid` unknowns of `keyed` with the smallest keys on the
+    /// first side and the rest on the second, takes the separator, and lays
+    /// `set` out as `[first side | second side | separator]`; returns the
+    /// sizes of the two sides.
     fn finish(&mut self, graph: &Graph, set: &mut [usize], mid: usize) -> (usize, usize) {
         let (a, b, s) = (self.next, self.next + 1, self.next + 2);
         self.next += 3;
