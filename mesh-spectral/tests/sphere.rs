@@ -130,3 +130,52 @@ fn results_are_deterministic() {
     assert_eq!(a.values, b.values);
     assert_eq!(a.vector(5), b.vector(5));
 }
+
+#[test]
+fn narrow_and_mixed_lane_groups_solve_like_the_dense_path() {
+    // Blocks of 4 (one narrow lane group) and 12 (a group of 8 and one of
+    // 4) on a torus, whose largest multiplicity (2, rotational) is below both.
+    let mesh = shapes::torus(2.0, 0.7, 48, 16).unwrap();
+    let (l, m) = pencil(&mesh);
+    let dense = eigenpairs(&l, &m, 24, &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() }).unwrap();
+    for block in [4, 12] {
+        let o = EigenOptions { block_size: Some(block), dense_threshold: 0, ..EigenOptions::default() };
+        let krylov = eigenpairs(&l, &m, 24, &o).unwrap();
+        assert_eq!((krylov.stats.method, krylov.stats.block_size), (EigenSolver::BlockKrylovSchur, block));
+        for (a, b) in dense.values.iter().zip(&krylov.values) {
+            assert!((a - b).abs() <= 1e-10 * (1.0 + a.abs()), "block {block}: {a} vs {b}");
+        }
+        assert!(krylov.residuals.iter().all(|r| *r <= krylov.stats.tolerance), "block {block}");
+    }
+}
+
+#[test]
+fn copies_beyond_the_block_are_counted_and_found() {
+    // A path of 400 unit edges with 10 leaves hung on its first vertex by
+    // edges of weight 1e-5: every difference of two leaves is an exact
+    // eigenvector for 1e-5, nine copies, more than a block of 4 holds in
+    // exact arithmetic: every copy is still returned (rounding brings them
+    // into the basis, and the inertia count checks that none is missing).
+    let (path, leaves, w) = (400, 10, 1e-5);
+    let n = path + leaves;
+    let mut t = sprs::TriMat::new((n, n));
+    let mut edge = |a: usize, b: usize, weight: f64| {
+        t.add_triplet(a, a, weight);
+        t.add_triplet(b, b, weight);
+        t.add_triplet(a, b, -weight);
+        t.add_triplet(b, a, -weight);
+    };
+    (0..path - 1).for_each(|i| edge(i, i + 1, 1.0));
+    (path..n).for_each(|leaf| edge(0, leaf, w));
+    let l: sprs::CsMat<f64> = t.to_csr();
+    let mass = vec![1.0; n];
+    let dense =
+        eigenpairs(&l, &mass, 14, &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() }).unwrap();
+    let copies = dense.values.iter().filter(|v| (*v - w).abs() < 1e-12).count();
+    assert_eq!(copies, 9, "{:?}", dense.values);
+    let krylov = eigenpairs(&l, &mass, 14, &EigenOptions { dense_threshold: 0, ..EigenOptions::default() }).unwrap();
+    assert_eq!(krylov.stats.method, EigenSolver::BlockKrylovSchur);
+    for (a, b) in dense.values.iter().zip(&krylov.values) {
+        assert!((a - b).abs() <= 1e-9 * (a.abs() + 1e-4), "{:?} vs {:?}", dense.values, krylov.values);
+    }
+}

@@ -4,10 +4,12 @@
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::SymbolicSupernodalParams;
@@ -184,14 +186,64 @@ impl Cholesky {
     /// [`MeshError::Dimension`] for a matrix that is not square or whose pattern differs from the
     /// analysed one; [`MeshError::Solver`] when it is not positive definite.
     pub fn refactor(&mut self, a: &CsMat<f64>) -> Result<()> {
+        let a = self.same_pattern(a)?;
+        self.factor_numeric(&a)
+    }
+
+    /// How many eigenvalues of the symmetric `a` are negative, for `a` with
+    /// the sparsity pattern of the analysed matrix (e.g. `L - mu M` where
+    /// `L - sigma M` was factored): the negative pivots of `P a P^T = L D L^T`
+    /// with this factor's ordering and analysis, by Sylvester's law of
+    /// inertia. The factorization does not pivot, so a pivot below
+    /// `64 eps` times the largest (or not finite) makes the count
+    /// untrustworthy: `None` then. Cost: one numeric factorization.
+    ///
+    /// # Errors
+    /// [`MeshError::Dimension`] for a matrix that is not square or whose pattern differs from the
+    /// analysed one; [`MeshError::Solver`] when the workspace cannot be allocated.
+    pub fn negative_eigenvalues(&self, a: &CsMat<f64>) -> Result<Option<usize>> {
+        let a = self.same_pattern(a)?;
+        let par = parallelism(a.nrows());
+        let mut values = vec![0.0; self.symbolic.len_val()];
+        let mut mem =
+            memory(MemBuffer::try_new(self.symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Spec::default())))?;
+        let factored = self.symbolic.factorize_numeric_ldlt(
+            &mut values,
+            a.as_ref(),
+            Side::Lower,
+            LdltRegularization::default(),
+            par,
+            MemStack::new(&mut mem),
+            Spec::default(),
+        );
+        if factored.is_err() {
+            return Ok(None);
+        }
+        let pivots: Vec<f64> = match (&self.supernodes, self.symbolic.raw()) {
+            (Some(nodes), _) => nodes.diagonal(&values).collect(),
+            (None, SymbolicCholeskyRaw::Simplicial(s)) => (0..a.nrows())
+                .map(|j| {
+                    let range = s.col_ptr()[j]..s.col_ptr()[j + 1];
+                    range.clone().find(|&p| s.row_idx()[p] == j).map_or(0.0, |p| values[p])
+                })
+                .collect(),
+            (None, SymbolicCholeskyRaw::Supernodal(_)) => return Ok(None),
+        };
+        let largest = pivots.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        let trusted = largest.is_finite() && pivots.iter().all(|d| d.abs() > 64.0 * f64::EPSILON * largest);
+        Ok(trusted.then(|| pivots.iter().filter(|d| **d < 0.0).count()))
+    }
+
+    /// `a` in faer form, checked to be square with the analysed pattern.
+    fn same_pattern(&self, a: &CsMat<f64>) -> Result<SparseColMat<usize, f64>> {
         if check_square(a)? != self.dim() {
-            return Err(MeshError::Dimension(format!("refactor with {} rows, expected {}", a.rows(), self.dim())));
+            return Err(MeshError::Dimension(format!("{} rows, expected {}", a.rows(), self.dim())));
         }
         let a = to_faer(a)?;
         if a.symbolic().col_ptr() != self.pattern.0 || a.symbolic().row_idx() != self.pattern.1 {
-            return Err(MeshError::Dimension("refactor with a different sparsity pattern".into()));
+            return Err(MeshError::Dimension("a different sparsity pattern from the analysed one".into()));
         }
-        self.factor_numeric(&a)
+        Ok(a)
     }
 
     /// Number of unknowns.

@@ -293,6 +293,26 @@ mod tests {
     }
 
     #[test]
+    fn negative_eigenvalues_are_counted_by_inertia() {
+        // The path's eigenvalues are 2 - 2 cos(k pi / n): a shift between the
+        // j-th and the next leaves exactly j + 1 below it, on a simplicial
+        // (n = 50) and a supernodal (n = 3000) factor.
+        for n in [50, 3000] {
+            let c = Cholesky::new(&path(n, 0.5)).unwrap();
+            let value = |k: usize| 2.0 - 2.0 * (k as f64 * std::f64::consts::PI / n as f64).cos();
+            for j in [0, 6, 19] {
+                let mu = 0.5 * (value(j) + value(j + 1));
+                assert_eq!(c.negative_eigenvalues(&path(n, -mu)).unwrap(), Some(j + 1), "n {n}, j {j}");
+            }
+            assert_eq!(c.negative_eigenvalues(&path(n, 0.1)).unwrap(), Some(0));
+            assert!(c.negative_eigenvalues(&path(n + 1, 0.1)).is_err());
+        }
+        // A shift on an eigenvalue (the constant's 0): a zero pivot, no count.
+        let c = Cholesky::new(&path(50, 0.5)).unwrap();
+        assert_eq!(c.negative_eigenvalues(&path(50, 0.0)).unwrap(), None);
+    }
+
+    #[test]
     fn cholesky_refuses_indefinite_and_nan() {
         assert!(matches!(Cholesky::new(&path(10, 0.0)), Err(MeshError::Solver(_))));
         let mut t = TriMat::new((2, 2));

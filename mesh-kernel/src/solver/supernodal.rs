@@ -65,6 +65,15 @@ impl Supernodes {
         Some(Self { nodes })
     }
 
+    /// The diagonal of the factor, column after column (of `D` for an
+    /// `L D L^T` factorization with this structure).
+    pub fn diagonal<'a>(&'a self, values: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
+        self.nodes.iter().flat_map(move |node| {
+            let rows = node.size + node.pattern.len();
+            (0..node.size).map(move |j| values[node.offset + j * rows + j])
+        })
+    }
+
     /// Solves `L L^T X = B` in place for `x` in the factor's (permuted)
     /// order, `W` right-hand sides per row. `values` are the factor's values
     /// and `x.len()` its dimension (checked by the caller).

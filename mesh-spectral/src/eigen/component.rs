@@ -13,7 +13,7 @@ use super::krylov::{self, BlockOperator, Config, Verdict};
 use super::problem::Component;
 use super::quality::{final_rayleigh_ritz, quality, rayleigh_quotients, Quality, Stiffness};
 use super::shift_invert::ShiftInvert;
-use super::shift_invert::LANES;
+use super::shift_invert::{HALF_LANES, LANES};
 use super::{dense, EigenOptions, EigenSolver, EigenStats};
 use crate::error::{Result, SpectralError};
 use mesh_kernel::solver::FillOrdering;
@@ -70,8 +70,8 @@ fn dense_component(c: &Component, want: usize, deflate: bool, scale: f64, option
     stats.attempts = 1;
     stats.iterate_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let st = Stiffness::new(&c.laplacian)?;
-    let quality = quality(&st, &c.mass, &values, vectors.as_ref(), scale, options.tolerance);
+    let p = Stiffness::new(&c.laplacian).apply(vectors.as_ref());
+    let quality = quality(&p, &c.mass, &values, vectors.as_ref(), scale, options.tolerance);
     stats.finalize_seconds = t.elapsed().as_secs_f64();
     Ok(Partial { values, vectors, quality, stats })
 }
@@ -88,7 +88,11 @@ impl KrylovSizes {
     /// `None` when the basis would not fit in the dimension `dim`.
     fn new(want: usize, dim: usize, o: &EigenOptions) -> Option<Self> {
         let nev = want + o.guard.unwrap_or((want / 10).max(4));
-        let block = o.block_size.unwrap_or((LANES * nev.div_ceil(64)).clamp(LANES, 4 * LANES));
+        let block = o.block_size.unwrap_or(if nev <= 32 {
+            HALF_LANES
+        } else {
+            (LANES * nev.div_ceil(64)).clamp(LANES, 4 * LANES)
+        });
         Self::with_block(want, dim, o, block)
     }
 
@@ -104,28 +108,21 @@ impl KrylovSizes {
         if o.block_size.is_some() {
             return self;
         }
-        let block = (self.block + LANES).max(at_least.next_multiple_of(LANES));
+        let step = if self.block < LANES { HALF_LANES } else { LANES };
+        let block = (self.block + step).max(at_least.next_multiple_of(HALF_LANES));
         Self::with_block(want, dim, o, block).unwrap_or(self)
     }
 }
 
 /// `P B P` with `P = I - y0 y0^T`: the shift-invert operator on the
-/// complement of its exact eigenvector `y0` (the constant, scaled), which is
-/// projected out of every block so that rounding cannot bring it back.
+/// complement of its exact eigenvector `y0` (the constant, scaled). Only the
+/// output is projected: `y0` is an eigenvector of `B` (`K 1 = -sigma M 1`),
+/// so the part of a block along `y0` comes out along `y0` and the projection
+/// of the output removes it (`P B = P B P`), and rounding cannot bring the
+/// constant back into the basis.
 struct Deflated<'a> {
     op: &'a ShiftInvert,
     y0: Option<Vec<f64>>,
-}
-
-impl Deflated<'_> {
-    fn project(&self, w: &mut Mat<f64>) {
-        let Some(y0) = &self.y0 else { return };
-        for j in 0..w.ncols() {
-            let col = w.col_as_slice_mut(j);
-            let d: f64 = col.iter().zip(y0).map(|(a, b)| a * b).sum();
-            col.iter_mut().zip(y0).for_each(|(a, b)| *a -= d * b);
-        }
-    }
 }
 
 impl BlockOperator for Deflated<'_> {
@@ -133,14 +130,14 @@ impl BlockOperator for Deflated<'_> {
         self.op.dim()
     }
     fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
-        if self.y0.is_some() {
-            let mut pq = q.to_owned();
-            self.project(&mut pq);
-            self.op.apply(pq.as_ref(), w)?;
-        } else {
-            self.op.apply(q, w)?;
+        self.op.apply(q, w)?;
+        if let Some(y0) = &self.y0 {
+            for j in 0..w.ncols() {
+                let col = w.col_as_slice_mut(j);
+                let d: f64 = col.iter().zip(y0).map(|(a, b)| a * b).sum();
+                col.iter_mut().zip(y0).for_each(|(a, b)| *a -= d * b);
+            }
         }
-        self.project(w);
         Ok(())
     }
 }
@@ -182,7 +179,7 @@ fn krylov_component(
     options: &EigenOptions,
 ) -> Result<Partial> {
     let dim = c.massive - usize::from(deflate);
-    let st = Stiffness::new(&c.laplacian)?;
+    let st = Stiffness::new(&c.laplacian);
     let mut stats = EigenStats::empty(EigenSolver::BlockKrylovSchur);
     let (mut sizes, mut restarts) = (sizes, options.max_restarts);
     let mut shift = options.shift.unwrap_or(-scale);
@@ -210,7 +207,10 @@ fn krylov_component(
             Ok(partial) if partial.quality.misses() == 0 => {
                 let cluster = largest_cluster(&partial.values, scale);
                 let larger = sizes.grown(want, dim, options, cluster + 2);
-                if cluster < sizes.block || larger.block == sizes.block {
+                if cluster < sizes.block
+                    || larger.block == sizes.block
+                    || every_pair_found(si, c, &partial.values, deflate, scale, &mut stats)?
+                {
                     return Ok(Partial { stats, ..partial });
                 }
                 sizes = larger;
@@ -247,6 +247,36 @@ fn not_converged(q: &Quality, want: usize, stats: &EigenStats, tolerance: f64) -
     }
 }
 
+/// Whether `values` (ascending; with the constant's 0 when `deflate`) hold
+/// every copy of every eigenvalue of the component below their last
+/// cluster: the number of eigenvalues below `mu`, just under that cluster,
+/// counted by inertia. A block of b vectors can miss copies of an eigenvalue
+/// repeated more than b times; this count finds them without solving again.
+/// Copies of the last cluster beyond the k asked for need not be found:
+/// they would not change the k smallest values. `false` when the count
+/// differs or cannot be trusted. Its time goes to the finalize phase.
+fn every_pair_found(
+    si: &ShiftInvert,
+    c: &Component,
+    values: &[f64],
+    deflate: bool,
+    scale: f64,
+    stats: &mut EigenStats,
+) -> Result<bool> {
+    let close = |a: f64, b: f64| (b - a).abs() <= CLUSTER * (b.abs() + scale);
+    let mut first = values.len().saturating_sub(1);
+    while first > 0 && close(values[first - 1], values[first]) {
+        first -= 1;
+    }
+    let Some(&bottom) = values.get(first) else { return Ok(true) };
+    let mu = bottom - 1e-6 * (bottom.abs() + scale);
+    let found = values.iter().filter(|v| **v < mu).count() + usize::from(deflate && mu > 0.0);
+    let t = Instant::now();
+    let below = si.eigenvalues_below(c, mu)?;
+    stats.finalize_seconds += t.elapsed().as_secs_f64();
+    Ok(below == Some(found))
+}
+
 /// `M^1/2 1 / sqrt(area)` in the coordinates of `op`: the unit eigenvector
 /// of `B` for the eigenvalue 0 of the pencil.
 fn null_vector(op: &ShiftInvert, c: &Component) -> Vec<f64> {
@@ -257,7 +287,7 @@ fn null_vector(op: &ShiftInvert, c: &Component) -> Vec<f64> {
 /// One block Krylov-Schur run and its final Rayleigh-Ritz.
 struct Run<'a> {
     c: &'a Component,
-    st: &'a Stiffness,
+    st: &'a Stiffness<'a>,
     op: &'a Deflated<'a>,
     scale: f64,
     want: usize,
@@ -283,8 +313,9 @@ impl Run<'_> {
         let si = self.op.op;
         let outcome = krylov::solve(self.op, &cfg, |theta, y, u| {
             let x = si.vectors(y, u, theta)?;
-            let values = rayleigh_quotients(&self.st.l, &c.mass, x.as_ref());
-            let q = quality(self.st, &c.mass, &values, x.as_ref(), scale, tol);
+            let p = self.st.apply(x.as_ref());
+            let values = rayleigh_quotients(&p.lx, &c.mass, x.as_ref());
+            let q = quality(&p, &c.mass, &values, x.as_ref(), scale, tol);
             Ok(Verdict { ratios: q.ratios(), vectors: x })
         });
         stats.iterate_seconds += t.elapsed().as_secs_f64();
@@ -304,20 +335,24 @@ impl Run<'_> {
         stats.solve_seconds += outcome.timings.apply;
         stats.orthogonalize_seconds += outcome.timings.orthogonalize;
         let t = Instant::now();
-        let (values, vectors) = final_rayleigh_ritz(&self.st.l, &c.mass, outcome.vectors)?;
-        let quality = quality(self.st, &c.mass, &values, vectors.as_ref(), scale, tol);
+        let (values, vectors) = final_rayleigh_ritz(self.st, &c.mass, outcome.vectors)?;
+        let quality = quality(&self.st.apply(vectors.as_ref()), &c.mass, &values, vectors.as_ref(), scale, tol);
         stats.finalize_seconds += t.elapsed().as_secs_f64();
         Ok(Partial { values, vectors, quality, stats: stats.clone() })
     }
 }
 
+/// Relative distance under which two values count as copies of one
+/// eigenvalue: `|a - b| <= CLUSTER (|b| + scale)`.
+const CLUSTER: f64 = 1e-8;
+
 /// Size of the largest run of ascending values closer than
-/// `1e-8 (|lambda| + scale)` to their neighbour.
+/// `CLUSTER (|lambda| + scale)` to their neighbour.
 fn largest_cluster(values: &[f64], scale: f64) -> usize {
     let mut best = usize::from(!values.is_empty());
     let mut run = 1;
     for w in values.windows(2) {
-        if (w[1] - w[0]).abs() <= 1e-8 * (w[1].abs() + scale) {
+        if (w[1] - w[0]).abs() <= CLUSTER * (w[1].abs() + scale) {
             run += 1;
             best = best.max(run);
         } else {
@@ -325,4 +360,35 @@ fn largest_cluster(values: &[f64], scale: f64) -> usize {
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::problem::{graph_laplacian, split};
+    use super::*;
+    use mesh_kernel::operators::mass::diagonal;
+
+    #[test]
+    fn the_inertia_count_notices_missing_copies() {
+        // A path of 60 with 8 leaves on its first vertex: the differences of
+        // two leaves are 7 copies of the eigenvalue 1, amid the path's modes.
+        let edges: Vec<(usize, usize)> = (0..59).map(|i| (i, i + 1)).chain((60..68).map(|leaf| (0, leaf))).collect();
+        let l = graph_laplacian(68, &edges);
+        let problem = split(&l, &diagonal(vec![1.0; 68])).unwrap();
+        let c = &problem.components[0];
+        let (values, _) = dense::smallest(c, 30, true).unwrap();
+        let copies: Vec<usize> = (0..values.len()).filter(|&j| (values[j] - 1.0).abs() < 1e-9).collect();
+        assert_eq!(copies.len(), 7, "{values:?}");
+        assert!(*copies.last().unwrap() < values.len() - 1);
+        let si = ShiftInvert::new(c, -0.1, &FillOrdering::MinimumDegree).unwrap();
+        let mut stats = EigenStats::empty(EigenSolver::BlockKrylovSchur);
+        assert!(every_pair_found(&si, c, &values, true, 1.0, &mut stats).unwrap());
+        // Two copies missing, the next values moving up in their place.
+        let mut missing = values.clone();
+        missing.drain(copies[0]..copies[0] + 2);
+        assert!(!every_pair_found(&si, c, &missing, true, 1.0, &mut stats).unwrap());
+        // Missing copies of the last cluster change nothing among the k smallest.
+        let last = &values[..=copies[3]];
+        assert!(every_pair_found(&si, c, last, true, 1.0, &mut stats).unwrap());
+    }
 }

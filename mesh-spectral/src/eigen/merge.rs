@@ -24,7 +24,8 @@ enum Source {
 /// rows of `L` do not sum to zero: not a Laplacian).
 fn null_pair(c: &Component, scale: f64, tolerance: f64) -> Result<Option<(Mat<f64>, Quality)>> {
     let x = Mat::from_fn(c.vertices.len(), 1, |_, _| 1.0 / c.area.sqrt());
-    let q = quality(&Stiffness::new(&c.laplacian)?, &c.mass, &[0.0], x.as_ref(), scale, tolerance);
+    let p = Stiffness::new(&c.laplacian).apply(x.as_ref());
+    let q = quality(&p, &c.mass, &[0.0], x.as_ref(), scale, tolerance);
     Ok((q.misses() == 0).then_some((x, q)))
 }
 

@@ -17,9 +17,8 @@
 //! no vector does better, so the target of a pair is `max(tolerance, f)`.
 //! On meshes of 1e5-1e6 vertices `f` reaches 1e-11 for the smallest pairs.
 
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
-use faer::sparse::SparseColMat;
 use faer::{Accum, Mat, MatRef, Side};
+use sprs::CsMat;
 
 use super::tall;
 use crate::error::{Result, SpectralError};
@@ -28,21 +27,80 @@ use crate::error::{Result, SpectralError};
 /// 7-10 non-zeros of a mesh Laplacian's row, and the error of `x` itself).
 const ROUNDING: f64 = 16.0 * f64::EPSILON;
 
-/// `L` of one component in faer form, with `|L|` for the rounding level.
-pub(crate) struct Stiffness {
-    pub l: SparseColMat<usize, f64>,
-    abs: SparseColMat<usize, f64>,
+/// Columns of `x` multiplied together by [`Stiffness`]: each stored entry of
+/// `L` is read once per group and applied to this many contiguous values.
+const GROUP: usize = 8;
+
+/// The symmetric `L` of one component, applied to blocks of vectors.
+pub(crate) struct Stiffness<'a> {
+    l: &'a CsMat<f64>,
 }
 
-impl Stiffness {
-    /// `L` and `|L|` converted to faer. O(nnz).
-    ///
-    /// # Errors
-    /// `MeshError::Solver` (through the crate error) when faer cannot hold
-    /// the matrix.
-    pub fn new(l: &sprs::CsMat<f64>) -> Result<Self> {
-        let abs = l.map(|v| v.abs());
-        Ok(Self { l: mesh_kernel::solver::to_faer(l)?, abs: mesh_kernel::solver::to_faer(&abs)? })
+/// `L x` and `|L| |x|` (the latter for the rounding level).
+pub(crate) struct Products {
+    pub lx: Mat<f64>,
+    abs: Mat<f64>,
+}
+
+impl<'a> Stiffness<'a> {
+    /// Wraps a symmetric `L` (its compressed columns are its rows).
+    pub fn new(l: &'a CsMat<f64>) -> Self {
+        Self { l }
+    }
+
+    /// `L x`. O(nnz k).
+    pub fn times(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        self.multiply::<false>(x).lx
+    }
+
+    /// `L x` and `|L| |x|` in one pass over `L`. O(nnz k).
+    pub fn apply(&self, x: MatRef<'_, f64>) -> Products {
+        self.multiply::<true>(x)
+    }
+
+    /// By groups of [`GROUP`] columns: `x` copied row by row, every row of
+    /// `L` applied to the group's values of its neighbours (an 8-wide
+    /// multiply-add per stored entry), the result copied back by columns.
+    fn multiply<const ABS: bool>(&self, x: MatRef<'_, f64>) -> Products {
+        let (n, k) = (x.nrows(), x.ncols());
+        let mut lx = Mat::zeros(n, k);
+        let mut abs = Mat::zeros(if ABS { n } else { 0 }, k);
+        let mut rows = vec![[0.0; GROUP]; n];
+        let mut out = vec![[0.0; GROUP]; n];
+        let mut out_abs = vec![[0.0; GROUP]; if ABS { n } else { 0 }];
+        for g in (0..k).step_by(GROUP) {
+            let width = GROUP.min(k - g);
+            for c in 0..width {
+                for (row, v) in rows.iter_mut().zip(x.col(g + c).iter()) {
+                    row[c] = *v;
+                }
+            }
+            for (i, lane) in self.l.outer_iterator().enumerate() {
+                let (mut acc, mut acc_abs) = ([0.0; GROUP], [0.0; GROUP]);
+                for (r, &v) in lane.iter() {
+                    let xr = &rows[r];
+                    for c in 0..GROUP {
+                        acc[c] += v * xr[c];
+                        if ABS {
+                            acc_abs[c] += v.abs() * xr[c].abs();
+                        }
+                    }
+                }
+                out[i] = acc;
+                if ABS {
+                    out_abs[i] = acc_abs;
+                }
+            }
+            for c in 0..width {
+                let dst = lx.col_as_slice_mut(g + c);
+                dst.iter_mut().zip(&out).for_each(|(d, o)| *d = o[c]);
+                if ABS {
+                    let dst = abs.col_as_slice_mut(g + c);
+                    dst.iter_mut().zip(&out_abs).for_each(|(d, o)| *d = o[c]);
+                }
+            }
+        }
+        Products { lx, abs }
     }
 }
 
@@ -67,24 +125,22 @@ impl Quality {
     }
 }
 
-/// Residuals and targets of the columns of `x` with values `values`.
-/// Two sparse products. O(nnz k).
+/// Residuals and targets of the columns of `x` with values `values`, from
+/// their products `p` (see [`Stiffness::apply`]). O(n k).
 pub(crate) fn quality(
-    st: &Stiffness,
+    p: &Products,
     mass: &[f64],
     values: &[f64],
     x: MatRef<'_, f64>,
     scale: f64,
     tolerance: f64,
 ) -> Quality {
-    let lx = sparse_times(&st.l, x);
-    let ax = abs_times(&st.abs, x);
     let mut q = Quality::default();
     for (j, &lambda) in values.iter().enumerate() {
         let (mut r, mut mx, mut lax) = (0.0, 0.0, 0.0);
-        let (lxj, axj) = (lx.col_as_slice(j), ax.col_as_slice(j));
-        for i in 0..x.nrows() {
-            let m = mass[i] * x[(i, j)];
+        let (lxj, axj) = (p.lx.col_as_slice(j), p.abs.col_as_slice(j));
+        for (i, &xi) in x.col(j).iter().enumerate() {
+            let m = mass[i] * xi;
             r += (lxj[i] - lambda * m).powi(2);
             mx += m * m;
             lax += axj[i] * axj[i];
@@ -100,9 +156,8 @@ pub(crate) fn quality(
     q
 }
 
-/// Rayleigh quotients `x^T L x / x^T M x` of the columns (one sparse product).
-pub(crate) fn rayleigh_quotients(l: &SparseColMat<usize, f64>, mass: &[f64], x: MatRef<'_, f64>) -> Vec<f64> {
-    let lx = sparse_times(l, x);
+/// Rayleigh quotients `x^T L x / x^T M x` of the columns, from `L x`.
+pub(crate) fn rayleigh_quotients(lx: &Mat<f64>, mass: &[f64], x: MatRef<'_, f64>) -> Vec<f64> {
     (0..x.ncols())
         .map(|j| {
             let (mut num, mut den) = (0.0, 0.0);
@@ -122,11 +177,7 @@ pub(crate) fn rayleigh_quotients(l: &SparseColMat<usize, f64>, mass: &[f64], x: 
 /// Rayleigh-Ritz of the pencil on span(X): with `X^T M X = C C^T`
 /// (Cholesky) and `C^-1 X^T L X C^-T = S Lambda S^T`, the Ritz vectors
 /// `X C^-T S` are M-orthonormal to rounding. O(n k^2).
-pub(crate) fn final_rayleigh_ritz(
-    l: &SparseColMat<usize, f64>,
-    mass: &[f64],
-    x: Mat<f64>,
-) -> Result<(Vec<f64>, Mat<f64>)> {
+pub(crate) fn final_rayleigh_ritz(st: &Stiffness<'_>, mass: &[f64], x: Mat<f64>) -> Result<(Vec<f64>, Mat<f64>)> {
     let (n, k) = (x.nrows(), x.ncols());
     let mut mx = x.clone();
     for j in 0..k {
@@ -134,7 +185,7 @@ pub(crate) fn final_rayleigh_ritz(
     }
     let mut gram = Mat::zeros(k, k);
     tall::gram(gram.as_mut(), x.as_ref(), mx.as_ref());
-    let lx = sparse_times(l, x.as_ref());
+    let lx = st.times(x.as_ref());
     let mut stiff = Mat::zeros(k, k);
     tall::gram(stiff.as_mut(), x.as_ref(), lx.as_ref());
     let sym = Mat::from_fn(k, k, |i, j| 0.5 * (gram[(i, j)] + gram[(j, i)]));
@@ -153,18 +204,6 @@ pub(crate) fn final_rayleigh_ritz(
     Ok((values, out))
 }
 
-pub(crate) fn sparse_times(l: &SparseColMat<usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
-    let mut lx = Mat::zeros(x.nrows(), x.ncols());
-    sparse_dense_matmul(lx.as_mut(), Accum::Replace, l.as_ref(), x, 1.0, faer::get_global_parallelism());
-    lx
-}
-
-/// `|L| |x|` column by column.
-fn abs_times(abs: &SparseColMat<usize, f64>, x: MatRef<'_, f64>) -> Mat<f64> {
-    let ax = Mat::from_fn(x.nrows(), x.ncols(), |i, j| x[(i, j)].abs());
-    sparse_times(abs, ax.as_ref())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,15 +214,32 @@ mod tests {
     }
 
     #[test]
+    fn products_match_a_dense_product_over_partial_groups() {
+        // A cycle of 30 vertices with chords, 11 columns (a full group of 8 and 3 more).
+        let edges: Vec<(usize, usize)> =
+            (0..30).map(|i| (i, (i + 1) % 30)).chain((0..10).map(|i| (i, i + 15))).collect();
+        let l = crate::eigen::problem::graph_laplacian(30, &edges);
+        let x = Mat::from_fn(30, 11, |i, j| ((i * 7 + j * 3) % 11) as f64 - 5.0);
+        let dense = Mat::from_fn(30, 30, |i, j| l.get(i, j).copied().unwrap_or(0.0));
+        let want = &dense * &x;
+        let abs_want = Mat::from_fn(30, 30, |i, j| dense[(i, j)].abs()) * Mat::from_fn(30, 11, |i, j| x[(i, j)].abs());
+        let p = Stiffness::new(&l).apply(x.as_ref());
+        assert!((&p.lx - &want).norm_max() < 1e-12 && (&p.abs - &abs_want).norm_max() < 1e-12);
+        assert_eq!(Stiffness::new(&l).times(x.as_ref()), p.lx);
+    }
+
+    #[test]
     fn exact_pairs_sit_at_rounding_and_wrong_ones_do_not() {
-        let st = Stiffness::new(&path()).unwrap();
+        let l = path();
+        let st = Stiffness::new(&l);
         let mass = [1.0; 3];
         // Eigenpairs of the path: 0 (constant), 1 (1, 0, -1), 3 (1, -2, 1).
         let x = Mat::from_fn(3, 3, |i, j| [[1.0, 1.0, 1.0], [1.0, 0.0, -1.0], [1.0, -2.0, 1.0]][j][i]);
-        let q = quality(&st, &mass, &[0.0, 1.0, 3.0], x.as_ref(), 1.0, 1e-12);
+        let p = st.apply(x.as_ref());
+        let q = quality(&p, &mass, &[0.0, 1.0, 3.0], x.as_ref(), 1.0, 1e-12);
         assert_eq!(q.misses(), 0, "{q:?}");
         assert!(q.relative.iter().all(|r| *r == 0.0));
-        let q = quality(&st, &mass, &[0.0, 1.1, 3.0], x.as_ref(), 1.0, 1e-12);
+        let q = quality(&p, &mass, &[0.0, 1.1, 3.0], x.as_ref(), 1.0, 1e-12);
         assert_eq!(q.misses(), 1);
         assert!((q.absolute[1] - 0.1).abs() < 1e-15 && (q.relative[1] - 0.1 / 2.1).abs() < 1e-15);
     }

@@ -24,11 +24,24 @@ use super::problem::Component;
 use crate::error::{Result, SpectralError};
 
 /// Right-hand sides per block solve: the width of one 512-bit vector of
-/// doubles (two AVX2 registers).
+/// doubles (two AVX2 registers). A block whose last columns are at most
+/// [`HALF_LANES`] is solved with that narrower width for them.
 pub(crate) const LANES: usize = 8;
 
-/// The values of one unknown for [`LANES`] right-hand sides.
-type Lane = [f64; LANES];
+/// The narrower width of a block solve (one AVX2 register): a block of 4,
+/// or the last 4 columns of a block of 12, 20, ..., use it instead of
+/// padding 8 lanes with zeros.
+pub(crate) const HALF_LANES: usize = 4;
+
+/// The lane widths that cover `b` columns: groups of [`LANES`], the last one
+/// of [`HALF_LANES`] when that is enough.
+fn group_widths(b: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..b.div_ceil(LANES)).map(move |g| {
+        let first = g * LANES;
+        let width = if b - first <= HALF_LANES { HALF_LANES } else { LANES };
+        (first, width)
+    })
+}
 
 /// A factored `K = L - sigma M` with the mass scaling.
 #[derive(Debug)]
@@ -40,8 +53,9 @@ pub(crate) struct ShiftInvert {
     coords: Vec<Option<(usize, f64)>>,
     /// Component row of each coordinate of `y`.
     rows: Vec<usize>,
-    /// Reused lane buffers of the block solves.
-    scratch: Mutex<Vec<Vec<Lane>>>,
+    /// Reused lane buffers of the block solves: per group of columns, its
+    /// values row by row (`width` per unknown, in the factor's order).
+    scratch: Mutex<Vec<Vec<f64>>>,
 }
 
 impl ShiftInvert {
@@ -51,8 +65,7 @@ impl ShiftInvert {
     /// # Errors
     /// `SpectralError::Mesh` (`MeshError::Solver`) when the shifted matrix cannot be factorized.
     pub fn new(c: &Component, shift: f64, ordering: &FillOrdering) -> Result<Self> {
-        let k = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
-        let chol = Cholesky::with_ordering(&k, ordering)?;
+        let chol = Cholesky::with_ordering(&shifted(c, shift), ordering)?;
         let mut rows = Vec::with_capacity(c.massive);
         let coords = chol
             .order()
@@ -66,6 +79,17 @@ impl ShiftInvert {
             })
             .collect();
         Ok(Self { chol, shift, coords, rows, scratch: Mutex::new(Vec::new()) })
+    }
+
+    /// How many eigenvalues of the component's pencil lie below `mu`: the
+    /// negative eigenvalues of `L - mu M` (Sylvester's law of inertia,
+    /// through this factor's analysis); `None` when the count cannot be
+    /// trusted ([`Cholesky::negative_eigenvalues`]).
+    ///
+    /// # Errors
+    /// `SpectralError::Mesh` when the workspace cannot be allocated.
+    pub fn eigenvalues_below(&self, c: &Component, mu: f64) -> Result<Option<usize>> {
+        Ok(self.chol.negative_eigenvalues(&shifted(c, mu)).ok().flatten())
     }
 
     /// The shift sigma.
@@ -97,23 +121,13 @@ impl ShiftInvert {
     pub fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
         let mut groups = self.take_scratch(q.ncols());
         self.gather(q, |_| 1.0, &mut groups);
-        self.solve_groups(&mut groups)?;
-        for (g, lanes) in groups.iter().enumerate() {
-            let cols = LANES.min(q.ncols() - g * LANES);
-            let mut outs: Vec<&mut [f64]> = Vec::with_capacity(cols);
-            let (_, rest) = w.as_mut().split_at_col_mut(g * LANES);
-            let mut rest = rest;
-            for _ in 0..cols {
-                let (head, tail) = rest.split_at_col_mut(1);
-                if let Some(c) = head.col_mut(0).try_as_col_major_mut() {
-                    outs.push(c.as_slice_mut());
-                }
-                rest = tail;
-            }
-            for (lane, coord) in lanes.iter().zip(&self.coords) {
-                if let Some((i, s)) = *coord {
-                    for (k, out) in outs.iter_mut().enumerate() {
-                        out[i] = s * lane[k];
+        self.solve_groups(q.ncols(), &mut groups)?;
+        for ((first, width), lanes) in group_widths(q.ncols()).zip(&groups) {
+            for k in 0..width.min(q.ncols() - first) {
+                let out = w.col_as_slice_mut(first + k);
+                for (row, coord) in lanes.chunks_exact(width).zip(&self.coords) {
+                    if let Some((i, s)) = *coord {
+                        out[i] = s * row[k];
                     }
                 }
             }
@@ -123,49 +137,57 @@ impl ShiftInvert {
     }
 
     /// Lane buffers for `b` columns, reused across applications.
-    fn take_scratch(&self, b: usize) -> Vec<Vec<Lane>> {
+    fn take_scratch(&self, b: usize) -> Vec<Vec<f64>> {
         let mut groups = self.scratch.lock().map(|mut s| std::mem::take(&mut *s)).unwrap_or_default();
-        groups.resize_with(b.div_ceil(LANES), Vec::new);
-        groups.truncate(b.div_ceil(LANES));
-        for g in &mut groups {
-            g.resize(self.coords.len(), [0.0; LANES]);
+        let widths: Vec<usize> = group_widths(b).map(|(_, width)| width).collect();
+        groups.resize_with(widths.len(), Vec::new);
+        for (g, width) in groups.iter_mut().zip(widths) {
+            g.resize(self.coords.len() * width, 0.0);
         }
         groups
     }
 
-    fn put_scratch(&self, groups: Vec<Vec<Lane>>) {
+    fn put_scratch(&self, groups: Vec<Vec<f64>>) {
         if let Ok(mut s) = self.scratch.lock() {
             *s = groups;
         }
     }
 
-    /// Block solves of every group, in the factor's order.
-    fn solve_groups(&self, groups: &mut [Vec<Lane>]) -> Result<()> {
+    /// Block solves of every group of the `b` columns, in the factor's order.
+    fn solve_groups(&self, b: usize, groups: &mut [Vec<f64>]) -> Result<()> {
+        let solve = |(_, width): (usize, usize), g: &mut Vec<f64>| -> Result<()> {
+            if width == HALF_LANES {
+                Ok(self.chol.solve_ordered_rows(g.as_chunks_mut::<HALF_LANES>().0)?)
+            } else {
+                Ok(self.chol.solve_ordered_rows(g.as_chunks_mut::<LANES>().0)?)
+            }
+        };
+        let widths: Vec<(usize, usize)> = group_widths(b).collect();
         #[cfg(feature = "rayon")]
         {
             use rayon::prelude::*;
-            groups.par_iter_mut().try_for_each(|g| self.chol.solve_ordered_rows(g))?;
+            widths.into_par_iter().zip(groups.par_iter_mut()).try_for_each(|(w, g)| solve(w, g))?;
         }
         #[cfg(not(feature = "rayon"))]
-        for g in groups.iter_mut() {
-            self.chol.solve_ordered_rows(g)?;
+        for (w, g) in widths.into_iter().zip(groups.iter_mut()) {
+            solve(w, g)?;
         }
         Ok(())
     }
 
     /// Fills `groups` with `M^1/2 q`, column j scaled by `scale(j)`, as
-    /// row-major groups of [`LANES`] columns in the factor's order
-    /// (zero-padded): one sequential sweep per group.
-    fn gather(&self, q: MatRef<'_, f64>, scale: impl Fn(usize) -> f64, groups: &mut [Vec<Lane>]) {
+    /// row-major groups of columns in the factor's order (zero-padded): one
+    /// sequential sweep per group.
+    fn gather(&self, q: MatRef<'_, f64>, scale: impl Fn(usize) -> f64, groups: &mut [Vec<f64>]) {
         let b = q.ncols();
-        for (g, lanes) in groups.iter_mut().enumerate() {
+        for ((first, width), lanes) in group_widths(b).zip(groups.iter_mut()) {
             let cols: Vec<(Cow<'_, [f64]>, f64)> =
-                (g * LANES..b.min(g * LANES + LANES)).map(|j| (column(q, j), scale(j))).collect();
-            for (lane, coord) in lanes.iter_mut().zip(&self.coords) {
-                *lane = [0.0; LANES];
+                (first..b.min(first + width)).map(|j| (column(q, j), scale(j))).collect();
+            for (row, coord) in lanes.chunks_exact_mut(width).zip(&self.coords) {
+                row.fill(0.0);
                 if let Some((i, s)) = *coord {
                     for (k, (col, sj)) in cols.iter().enumerate() {
-                        lane[k] = s * sj * col[i];
+                        row[k] = s * sj * col[i];
                     }
                 }
             }
@@ -200,12 +222,12 @@ impl ShiftInvert {
         }
         let mut groups = self.take_scratch(y.ncols());
         self.gather(y, |j| 1.0 / theta[j], &mut groups);
-        self.solve_groups(&mut groups)?;
+        self.solve_groups(y.ncols(), &mut groups)?;
         let perm = self.chol.order();
-        for (g, lanes) in groups.iter().enumerate() {
-            for k in 0..LANES.min(y.ncols() - g * LANES) {
-                let out = x.col_as_slice_mut(g * LANES + k);
-                for (lane, &row) in lanes.iter().zip(perm) {
+        for ((first, width), lanes) in group_widths(y.ncols()).zip(&groups) {
+            for k in 0..width.min(y.ncols() - first) {
+                let out = x.col_as_slice_mut(first + k);
+                for (lane, &row) in lanes.chunks_exact(width).zip(perm) {
                     out[row] = lane[k];
                 }
             }
@@ -215,10 +237,31 @@ impl ShiftInvert {
     }
 }
 
+/// `L - shift M` of a component.
+fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
+    &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect())
+}
+
 /// Column j of `q` as a slice (copied only if it is not contiguous).
 fn column<'a>(q: MatRef<'a, f64>, j: usize) -> Cow<'a, [f64]> {
     match q.col(j).try_as_col_major() {
         Some(c) => Cow::Borrowed(c.as_slice()),
         None => Cow::Owned(q.col(j).iter().copied().collect()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lane_groups_cover_the_block_with_the_narrow_width_last() {
+        let widths = |b| group_widths(b).collect::<Vec<_>>();
+        assert_eq!(widths(4), vec![(0, 4)]);
+        assert_eq!(widths(3), vec![(0, 4)]);
+        assert_eq!(widths(8), vec![(0, 8)]);
+        assert_eq!(widths(12), vec![(0, 8), (8, 4)]);
+        assert_eq!(widths(14), vec![(0, 8), (8, 8)]);
+        assert_eq!(widths(20), vec![(0, 8), (8, 8), (16, 4)]);
     }
 }
