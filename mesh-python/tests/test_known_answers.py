@@ -273,7 +273,9 @@ def test_harmonics_transforms_filter_and_compression(sphere):
     assert np.abs(p).max() < 1e-8
     (Vc, Fc), err = mh.compress(16)
     (Vd, Fd), err4 = mh.compress(4)
-    assert err["rms"] <= err4["rms"] and np.array_equal(Fc, F)
+    # More coefficients never do worse; on the sphere the l = 2, 3 harmonics
+    # add nothing to the coordinates, so the two errors agree to rounding.
+    assert err["rms"] <= err4["rms"] * (1 + 1e-9) and np.array_equal(Fc, F)
     # A sphere is spanned by the constant and the three l = 1 harmonics.
     assert err4["max"] < 1e-3
     low = mh.filter("low-pass", cutoff=2.0, order=4)
