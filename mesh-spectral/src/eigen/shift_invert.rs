@@ -19,6 +19,7 @@ use std::sync::Mutex;
 
 use faer::{Mat, MatRef};
 use mesh_kernel::solver::{Cholesky, FillOrdering};
+use mesh_kernel::MeshError;
 
 use super::problem::Component;
 use crate::error::{Result, SpectralError};
@@ -84,12 +85,17 @@ impl ShiftInvert {
     /// How many eigenvalues of the component's pencil lie below `mu`: the
     /// negative eigenvalues of `L - mu M` (Sylvester's law of inertia,
     /// through this factor's analysis); `None` when the count cannot be
-    /// trusted ([`Cholesky::negative_eigenvalues`]).
+    /// trusted ([`Cholesky::negative_eigenvalues`]) or `L - mu M` lost an
+    /// entry of the analysed pattern (a diagonal cancelled to zero).
     ///
     /// # Errors
     /// `SpectralError::Mesh` when the workspace cannot be allocated.
     pub fn eigenvalues_below(&self, c: &Component, mu: f64) -> Result<Option<usize>> {
-        Ok(self.chol.negative_eigenvalues(&shifted(c, mu)).ok().flatten())
+        match self.chol.negative_eigenvalues(&shifted(c, mu)) {
+            Ok(count) => Ok(count),
+            Err(MeshError::Dimension(_)) => Ok(None),
+            Err(e) => Err(e.into()),
+        }
     }
 
     /// The shift sigma.
