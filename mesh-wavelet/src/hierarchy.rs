@@ -14,7 +14,7 @@
 use std::sync::OnceLock;
 
 use glam::DVec3;
-use mesh_kernel::{MeshError, TriMesh};
+use mesh_kernel::{par, MeshError, TriMesh};
 
 use crate::error::{Result, WaveletError};
 use crate::topology::{manifold_topology, Topology};
@@ -246,15 +246,12 @@ pub(crate) fn check_size(faces: usize, levels: usize) -> Result<()> {
 /// corner triangles of face `f` at `4f + k`, the middle one at `4f + 3`.
 /// (That function also needs positions; the hierarchy only has topology.)
 pub(crate) fn split_faces(topo: &Topology, faces: &[[u32; 3]], n: u32) -> Vec<[u32; 3]> {
-    let mut fine = Vec::with_capacity(4 * faces.len());
-    for (f, &[a, b, c]) in faces.iter().enumerate() {
+    par::map(faces.len(), |f| {
+        let [a, b, c] = faces[f];
         let [eab, ebc, eca] = topo.face_edges(f).map(|e| n + e);
-        fine.push([a, eab, eca]);
-        fine.push([b, ebc, eab]);
-        fine.push([c, eca, ebc]);
-        fine.push([eab, ebc, eca]);
-    }
-    fine
+        [[a, eab, eca], [b, ebc, eab], [c, eca, ebc], [eab, ebc, eca]]
+    })
+    .into_flattened()
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Subdivision surfaces by recursive 4-to-1 splitting (the chapter's figure 2.13):
 //! midpoint, Loop and modified butterfly.
 
-use mesh_kernel::{shapes, MeshError, TriMesh};
+use mesh_kernel::{par, shapes, MeshError, TriMesh};
 
 use crate::error::Result;
 use crate::hierarchy::{check_size, split_faces};
@@ -72,37 +72,39 @@ fn split_once(mesh: &TriMesh, scheme: Scheme) -> Result<TriMesh> {
     }
     let topo = manifold_topology(mesh.vertex_count(), mesh.faces())?;
     let (n, p) = (mesh.vertex_count(), mesh.positions());
-    let mut positions = Vec::with_capacity(n + topo.edge_count());
-    match scheme {
-        Scheme::Loop => positions.extend((0..n as u32).map(|v| rules::loop_even(&topo, p, v))),
-        _ => positions.extend_from_slice(p),
-    }
-    let mut scratch = Scratch::default();
-    let mut row = Vec::with_capacity(16);
-    let mut opposite = Vec::with_capacity(2);
-    for (e, &[a, b]) in topo.edges().iter().enumerate() {
+    // The old vertices, then one new vertex per edge; each position
+    // depends on its index only (in parallel through `par`).
+    let scratch = || (Scratch::default(), Vec::with_capacity(16), Vec::with_capacity(2));
+    let positions = par::map_with(n + topo.edge_count(), scratch, |(scratch, row, opposite), i| {
+        if i < n {
+            return match scheme {
+                Scheme::Loop => rules::loop_even(&topo, p, i as u32),
+                _ => p[i],
+            };
+        }
+        let e = (i - n) as u32;
+        let [a, b] = topo.edges()[e as usize];
         let (pa, pb) = (p[a as usize], p[b as usize]);
-        let odd = match scheme {
+        match scheme {
             // Not reached (the midpoint scheme returned above); its rule, so
             // that the match names every scheme without a panic.
             Scheme::Midpoint => (pa + pb) * 0.5,
             Scheme::Loop => {
                 // The mask of rules::odd_mask, inlined.
-                topo.edge_opposites(e as u32, &mut opposite);
+                topo.edge_opposites(e, opposite);
                 match opposite[..] {
                     [c, d] => (pa + pb) * 0.375 + (p[c as usize] + p[d as usize]) * 0.125,
                     _ => (pa + pb) * 0.5,
                 }
             }
             Scheme::Butterfly => {
-                topo.edge_opposites(e as u32, &mut opposite);
+                topo.edge_opposites(e, opposite);
                 row.clear();
-                rules::odd_mask(&topo, scheme, a, b, &opposite, &mut scratch, &mut row);
+                rules::odd_mask(&topo, scheme, a, b, opposite, scratch, row);
                 row.iter().map(|&(v, w)| p[v as usize] * w).sum()
             }
-        };
-        positions.push(odd);
-    }
+        }
+    });
     let faces = split_faces(&topo, mesh.faces(), n as u32);
     Ok(TriMesh::new(positions, faces)?)
 }

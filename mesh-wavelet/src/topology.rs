@@ -13,7 +13,9 @@
 
 use std::borrow::Cow;
 
-use mesh_kernel::{Connectivity, MeshError};
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering::Relaxed};
+
+use mesh_kernel::{par, Connectivity, MeshError};
 
 use crate::error::{Result, WaveletError};
 
@@ -79,66 +81,110 @@ fn prev(h: u32) -> u32 {
     }
 }
 
-impl<'a> Topology<'a> {
-    /// Builds the topology of `faces` over `n` vertices (indices in range).
-    /// Cost O(V + F).
-    pub(crate) fn new(n: usize, faces: &'a [[u32; 3]]) -> std::result::Result<Self, NotManifold> {
-        let corner = faces.as_flattened();
-        let nh = corner.len();
-        // Outgoing half-edges by origin (counting sort), with their
-        // destinations alongside so that the scans below stay sequential.
-        let mut out_start = vec![0u32; n + 1];
-        for &v in corner {
-            out_start[v as usize + 1] += 1;
-        }
+/// Vertices per task of the edge numbering in [`Topology::new`].
+const CHUNK: usize = 1 << 13;
+
+/// Runs of half-edges sorted side by side in [`Outgoing::new`].
+const PIECES: usize = 4;
+
+/// The outgoing half-edges of every vertex by origin (a counting sort),
+/// with their destinations alongside so that scans of them stay
+/// sequential.
+struct Outgoing {
+    start: Vec<u32>,
+    out: Vec<u32>,
+    dest: Vec<u32>,
+}
+
+impl Outgoing {
+    /// Sorts the half-edges `3 f + k` by origin, in [`PIECES`] runs of
+    /// half-edges side by side: each run counts its own, and a vertex's
+    /// half-edges from one run go after those from the runs before it, so
+    /// that each vertex's list is in half-edge order, as in one sort.
+    fn new(n: usize, corner: &[u32]) -> Self {
+        let piece = corner.len().div_ceil(PIECES).max(1);
+        let runs: Vec<&[u32]> = corner.chunks(piece).collect();
+        let counts = par::map_heavy(runs.len(), |r| {
+            let mut count = vec![0u32; n];
+            for &v in runs[r] {
+                count[v as usize] += 1;
+            }
+            count
+        });
+        // Where each run's first half-edge from each vertex goes.
+        let mut fills = counts;
+        let mut start = Vec::with_capacity(n + 1);
+        let mut total = 0u32;
         for v in 0..n {
-            out_start[v + 1] += out_start[v];
+            start.push(total);
+            for fill in &mut fills {
+                let count = fill[v];
+                fill[v] = total;
+                total += count;
+            }
         }
-        // Scatter with out_start[v] as the fill pointer of v, then shift back.
-        let mut out = vec![0u32; nh];
-        let mut out_dest = vec![0u32; nh];
-        for h in 0..nh {
-            let v = corner[h] as usize;
-            let p = out_start[v] as usize;
-            out[p] = h as u32;
-            out_dest[p] = corner[next(h as u32) as usize];
-            out_start[v] += 1;
-        }
-        for v in (1..=n).rev() {
-            out_start[v] = out_start[v - 1];
-        }
-        out_start[0] = 0;
-        let range = |v: u32| out_start[v as usize] as usize..out_start[v as usize + 1] as usize;
-        // One pass over the vertices u in order. Twins are searched from the
-        // smaller endpoint: u -> v (v > u) among the outgoing half-edges of v.
-        // The edges (u, w) with w > u are those of the half-edges u -> w and
-        // of the incoming w -> u (prev of an outgoing one), deduplicated, so
-        // boundary edges entering u are found too. Two half-edges u -> v, or
-        // two v -> u, mean a non-manifold edge or inconsistent orientation:
-        // they show up as a repeated bucket entry at the smaller endpoint.
-        let mut twin = vec![NONE; nh];
-        let mut edge_of = vec![NONE; nh];
-        let mut edges = Vec::with_capacity(nh / 2 + 1);
-        let mut edge_he = Vec::with_capacity(nh / 2 + 1);
+        start.push(total);
+        // Every slot is written once (relaxed stores: plain writes on x86).
+        let slots = || (0..corner.len()).map(|_| AtomicU32::new(0)).collect::<Vec<_>>();
+        let (out, dest) = (slots(), slots());
+        par::map_heavy(runs.len(), |r| {
+            let mut fill = fills[r].clone();
+            for (k, &v) in runs[r].iter().enumerate() {
+                let h = (r * piece + k) as u32;
+                let p = fill[v as usize] as usize;
+                out[p].store(h, Relaxed);
+                dest[p].store(corner[next(h) as usize], Relaxed);
+                fill[v as usize] += 1;
+            }
+        });
+        let plain = |slots: Vec<AtomicU32>| slots.into_iter().map(AtomicU32::into_inner).collect();
+        Self { start, out: plain(out), dest: plain(dest) }
+    }
+
+    #[inline]
+    fn range(&self, v: u32) -> std::ops::Range<usize> {
+        self.start[v as usize] as usize..self.start[v as usize + 1] as usize
+    }
+
+    /// The edges (u, w), w > u, of the vertices u in `vertices`, in order,
+    /// with the half-edge standing for each; it sets the twins of their
+    /// half-edges and their edge numbers counted from the first of these
+    /// edges. Twins are searched from the smaller endpoint: u -> v (v > u)
+    /// among the outgoing half-edges of v. The edges of u are those of the
+    /// half-edges u -> w and of the incoming w -> u (the previous half-edge
+    /// of an outgoing one), deduplicated, so that boundary edges entering u
+    /// count too. Two half-edges u -> v, or two v -> u, mean a non-manifold
+    /// edge or an inconsistent orientation: they show up as a repeated entry
+    /// at the smaller endpoint.
+    fn number_edges(
+        &self,
+        corner: &[u32],
+        vertices: std::ops::Range<u32>,
+        twin: &[AtomicU32],
+        edge_of: &[AtomicU32],
+    ) -> std::result::Result<(Vec<[u32; 2]>, Vec<u32>), NotManifold> {
+        // About one edge per two outgoing half-edges.
+        let outgoing = self.start[vertices.end as usize] - self.start[vertices.start as usize];
+        let mut edges = Vec::with_capacity(outgoing as usize / 2 + 1);
+        let mut edge_he = Vec::with_capacity(outgoing as usize / 2 + 1);
         let mut bucket: Vec<(u32, u32, u32)> = Vec::new();
-        for u in 0..n as u32 {
-            let ru = range(u);
+        for u in vertices {
             bucket.clear();
-            for p in ru.clone() {
-                let (h, v) = (out[p], out_dest[p]);
+            for p in self.range(u) {
+                let (h, v) = (self.out[p], self.dest[p]);
                 if v > u {
                     let mut found = NONE;
-                    for q in range(v) {
-                        if out_dest[q] == u {
+                    for q in self.range(v) {
+                        if self.dest[q] == u {
                             if found != NONE {
                                 return Err(NotManifold);
                             }
-                            found = out[q];
+                            found = self.out[q];
                         }
                     }
-                    twin[h as usize] = found;
+                    twin[h as usize].store(found, Relaxed);
                     if found != NONE {
-                        twin[found as usize] = h;
+                        twin[found as usize].store(h, Relaxed);
                     }
                     bucket.push((v, 0, h));
                 }
@@ -165,20 +211,101 @@ impl<'a> Topology<'a> {
                 let e = edges.len() as u32;
                 edges.push([u, hi]);
                 edge_he.push(h);
-                edge_of[h as usize] = e;
-                if twin[h as usize] != NONE {
-                    edge_of[twin[h as usize] as usize] = e;
+                edge_of[h as usize].store(e, Relaxed);
+                let t = twin[h as usize].load(Relaxed);
+                if t != NONE {
+                    edge_of[t as usize].store(e, Relaxed);
                 }
             }
         }
+        Ok((edges, edge_he))
+    }
+}
+
+/// Orders a vertex's outgoing half-edges `ring` counter-clockwise in place,
+/// from the boundary one if there is one (else from the first); false when
+/// they do not form one fan.
+fn order_fan(ring: &mut [u32], twin: &[u32]) -> bool {
+    let d = ring.len();
+    let mut boundary = ring.iter().filter(|&&h| twin[h as usize] == NONE);
+    let start = match (boundary.next(), boundary.next(), ring.first()) {
+        (Some(&h), None, _) => h,
+        (None, _, Some(&h)) => h,
+        _ => return d == 0,
+    };
+    // Around the vertex: the twin of the previous half-edge leaves it too,
+    // and twin . prev is one-to-one, so the walk meets each half-edge once.
+    let mut h = start;
+    for k in 0..d {
+        ring[k] = h;
+        let t = twin[prev(h) as usize];
+        if t == NONE || t == start {
+            return k + 1 == d;
+        }
+        h = t;
+    }
+    false
+}
+
+impl<'a> Topology<'a> {
+    /// Builds the topology of `faces` over `n` vertices (indices in range,
+    /// fewer than `u32::MAX / 3` faces, as in a `TriMesh`). Cost O(V + F).
+    ///
+    /// After one counting sort of the half-edges by origin, runs of
+    /// [`CHUNK`] vertices are numbered on [`par`]'s threads; the result
+    /// does not depend on the thread count.
+    pub(crate) fn new(n: usize, faces: &'a [[u32; 3]]) -> std::result::Result<Self, NotManifold> {
+        let corner = faces.as_flattened();
+        let outgoing = Outgoing::new(n, corner);
+        // Every slot is written once, by the chunk of its half-edge's
+        // smaller endpoint (relaxed stores: plain writes on x86).
+        let slots = || (0..corner.len()).map(|_| AtomicU32::new(NONE)).collect::<Vec<_>>();
+        let (twin, edge_of) = (slots(), slots());
+        let chunks = par::map_heavy(n.div_ceil(CHUNK), |c| {
+            let vertices = (c * CHUNK) as u32..(n.min((c + 1) * CHUNK)) as u32;
+            outgoing.number_edges(corner, vertices, &twin, &edge_of)
+        });
+        let mut firsts = Vec::with_capacity(chunks.len());
+        let (mut edges, mut edge_he) = (Vec::new(), Vec::new());
+        for chunk in chunks {
+            let (chunk_edges, chunk_he) = chunk?;
+            firsts.push(edges.len() as u32);
+            edges.extend_from_slice(&chunk_edges);
+            edge_he.extend_from_slice(&chunk_he);
+        }
+        // Collected in place (same layout).
+        let twin: Vec<u32> = twin.into_iter().map(AtomicU32::into_inner).collect();
+        // Chunk-local edge numbers made global.
+        let edge_of = par::map(corner.len(), |h| match edge_of[h].load(Relaxed) {
+            NONE => NONE,
+            e => {
+                let lo = corner[h].min(corner[next(h as u32) as usize]) as usize;
+                firsts[lo / CHUNK] + e
+            }
+        });
+        // A half-edge without an edge: its two endpoints are one vertex.
         if edge_of.contains(&NONE) {
             return Err(NotManifold);
         }
-        drop(out_dest);
+        let Outgoing { start: out_start, out: mut fans, .. } = outgoing;
+        let starts: Vec<usize> = par::map(n + 1, |v| out_start[v] as usize);
+        let split = AtomicBool::new(false);
+        par::rows(&mut fans, &starts, |_, ring| {
+            if !order_fan(ring, &twin) {
+                split.store(true, Relaxed);
+            }
+        });
+        if split.into_inner() {
+            return Err(NotManifold);
+        }
+        // An ordered fan starts at its boundary half-edge, if it has one.
+        let kind = par::map(n, |v| match fans[starts[v]..starts[v + 1]].first() {
+            None => Kind::Isolated,
+            Some(&h) if twin[h as usize] == NONE => Kind::Boundary,
+            Some(_) => Kind::Interior,
+        });
         let corner = Cow::Borrowed(corner);
-        let mut topo = Self { corner, twin, edge_of, edges, edge_he, out_start, out, kind: vec![Kind::Isolated; n] };
-        topo.order_fans()?;
-        Ok(topo)
+        Ok(Self { corner, twin, edge_of, edges, edge_he, out_start, out: fans, kind })
     }
 
     /// The same topology owning its corner array.
@@ -193,47 +320,6 @@ impl<'a> Topology<'a> {
             out: self.out,
             kind: self.kind,
         }
-    }
-
-    /// Orders each vertex's outgoing half-edges counter-clockwise (from the
-    /// boundary one on the boundary) and checks that they form one fan.
-    fn order_fans(&mut self) -> std::result::Result<(), NotManifold> {
-        let mut ordered = Vec::new();
-        for v in 0..self.kind.len() {
-            let range = self.out_start[v] as usize..self.out_start[v + 1] as usize;
-            let ring = &self.out[range.clone()];
-            let d = ring.len();
-            if d == 0 {
-                continue;
-            }
-            let mut boundary = ring.iter().filter(|&&h| self.twin[h as usize] == NONE);
-            let start = match (boundary.next(), boundary.next()) {
-                (Some(&h), None) => {
-                    self.kind[v] = Kind::Boundary;
-                    h
-                }
-                (None, _) => {
-                    self.kind[v] = Kind::Interior;
-                    ring[0]
-                }
-                _ => return Err(NotManifold),
-            };
-            ordered.clear();
-            let mut h = start;
-            loop {
-                ordered.push(h);
-                let t = self.twin[prev(h) as usize];
-                if t == NONE || t == start || ordered.len() > d {
-                    break;
-                }
-                h = t;
-            }
-            if ordered.len() != d {
-                return Err(NotManifold);
-            }
-            self.out[range].copy_from_slice(&ordered);
-        }
-        Ok(())
     }
 
     /// Number of vertices.
@@ -404,6 +490,14 @@ mod tests {
         same_as_connectivity(&shapes::disk(4, 3).unwrap());
         same_as_connectivity(&shapes::cylinder(1.0, 1.0, 7, 3).unwrap());
         same_as_connectivity(&shapes::grid(1.0, 1.0, 3, 2).unwrap());
+    }
+
+    #[test]
+    fn agrees_with_mesh_kernel_over_several_chunks() {
+        // More than one `CHUNK` of vertices, and past `par::PARALLEL_FROM`
+        // for the maps and row fills.
+        same_as_connectivity(&shapes::icosphere(6).unwrap());
+        same_as_connectivity(&shapes::grid(1.0, 1.0, 150, 120).unwrap());
     }
 
     proptest::proptest! {

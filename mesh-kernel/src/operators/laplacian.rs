@@ -134,10 +134,12 @@ pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
 /// L_ii = -sum_j L_ij. Symmetric positive semi-definite on meshes whose
 /// weights are non-negative, rows sum to zero, `L x = 0` for linear `x` on a
 /// planar mesh (interior rows). Equal to `-igl::cotmatrix`. Works on
-/// non-manifold input; zero-area faces contribute nothing. O(V + F).
+/// non-manifold input; zero-area faces contribute nothing. O(V + F); the
+/// weights and the pattern are built side by side on two threads.
 pub fn cotan_laplacian(mesh: &TriMesh) -> CsMat<f64> {
     let conn = mesh.connectivity();
-    EdgePattern::new(mesh.vertex_count(), conn.edges()).laplacian(&cotan_weights(mesh))
+    let (pattern, weights) = par::join(|| EdgePattern::new(mesh.vertex_count(), conn.edges()), || cotan_weights(mesh));
+    pattern.laplacian(&weights)
 }
 
 #[cfg(test)]
