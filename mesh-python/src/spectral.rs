@@ -43,10 +43,15 @@ fn mesh_and_harmonics(
     options: HarmonicsOptions,
 ) -> PyResult<(TriMesh, ManifoldHarmonics)> {
     let mesh = run(py, move || arrays.mesh())?;
-    run(py, move || {
+    let (mesh, mh) = run(py, move || {
         let mh = ManifoldHarmonics::new(&mesh, k, &options)?;
         Ok((mesh, mh))
-    })
+    })?;
+    // Copies of a repeated eigenvalue may be missing: a Python warning.
+    if let Some(caveat) = mh.eigenpairs().stats.caveat() {
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &std::ffi::CString::new(caveat)?, 1)?;
+    }
+    Ok((mesh, mh))
 }
 
 /// The `k` smallest eigenpairs of `L x = lambda M x`: `(evals (k,), evecs (n, k))`, M-orthonormal.

@@ -149,14 +149,10 @@ fn narrow_and_mixed_lane_groups_solve_like_the_dense_path() {
     }
 }
 
-#[test]
-fn copies_beyond_the_block_are_counted_and_found() {
-    // A path of 400 unit edges with 10 leaves hung on its first vertex by
-    // edges of weight 1e-5: every difference of two leaves is an exact
-    // eigenvector for 1e-5, nine copies, more than a block of 4 holds in
-    // exact arithmetic: every copy is still returned (rounding brings them
-    // into the basis, and the inertia count checks that none is missing).
-    let (path, leaves, w) = (400, 10, 1e-5);
+/// The path of `path` unit edges with `leaves` leaves hung on its first
+/// vertex by edges of weight `w`, and unit masses: `leaves - 1` copies of
+/// the eigenvalue `w` (every difference of two leaves).
+fn path_with_leaves(path: usize, leaves: usize, w: f64) -> (sprs::CsMat<f64>, Vec<f64>) {
     let n = path + leaves;
     let mut t = sprs::TriMat::new((n, n));
     let mut edge = |a: usize, b: usize, weight: f64| {
@@ -167,14 +163,47 @@ fn copies_beyond_the_block_are_counted_and_found() {
     };
     (0..path - 1).for_each(|i| edge(i, i + 1, 1.0));
     (path..n).for_each(|leaf| edge(0, leaf, w));
-    let l: sprs::CsMat<f64> = t.to_csr();
-    let mass = vec![1.0; n];
+    (t.to_csr(), vec![1.0; n])
+}
+
+#[test]
+fn a_fixed_block_smaller_than_a_cluster_is_never_silently_wrong() {
+    // Nine copies of 1e-5 and blocks of 1, 2 and 4 that may not grow: each
+    // result either agrees with the dense one or says that its clusters
+    // are unverified.
+    let (l, mass) = path_with_leaves(300, 10, 1e-5);
+    let dense =
+        eigenpairs(&l, &mass, 14, &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() }).unwrap();
+    let mut flagged = 0;
+    for block in [1, 2, 4] {
+        let o = EigenOptions { dense_threshold: 0, block_size: Some(block), ..EigenOptions::default() };
+        let krylov = eigenpairs(&l, &mass, 14, &o).unwrap();
+        let agree = dense.values.iter().zip(&krylov.values).all(|(a, b)| (a - b).abs() <= 1e-9 * (a.abs() + 1e-4));
+        assert!(agree || !krylov.stats.clusters_verified, "block {block}: {:?} vs {:?}", krylov.values, dense.values);
+        assert_eq!(krylov.stats.caveat().is_some(), !krylov.stats.clusters_verified);
+        flagged += usize::from(!krylov.stats.clusters_verified);
+    }
+    // Before the flag, each of these blocks returned 2 to 8 of the 9 copies
+    // and shifted the values after them, without a word.
+    assert!(flagged > 0);
+}
+
+#[test]
+fn copies_beyond_the_block_are_counted_and_found() {
+    // A path of 400 unit edges with 10 leaves hung on its first vertex by
+    // edges of weight 1e-5: every difference of two leaves is an exact
+    // eigenvector for 1e-5, nine copies, more than a block of 4 holds in
+    // exact arithmetic: every copy is still returned (rounding brings them
+    // into the basis, and the inertia count checks that none is missing).
+    let w = 1e-5;
+    let (l, mass) = path_with_leaves(400, 10, w);
     let dense =
         eigenpairs(&l, &mass, 14, &EigenOptions { dense_threshold: 10_000, ..EigenOptions::default() }).unwrap();
     let copies = dense.values.iter().filter(|v| (*v - w).abs() < 1e-12).count();
     assert_eq!(copies, 9, "{:?}", dense.values);
     let krylov = eigenpairs(&l, &mass, 14, &EigenOptions { dense_threshold: 0, ..EigenOptions::default() }).unwrap();
     assert_eq!(krylov.stats.method, EigenSolver::BlockKrylovSchur);
+    assert!(krylov.stats.clusters_verified);
     for (a, b) in dense.values.iter().zip(&krylov.values) {
         assert!((a - b).abs() <= 1e-9 * (a.abs() + 1e-4), "{:?} vs {:?}", dense.values, krylov.values);
     }

@@ -519,11 +519,15 @@ fn spectral_section(report: &mut Report, mesh: &TriMesh) -> CliResult<Value> {
         "zero_eigenvalues": st.zero_eigenvalues,
         "max_residual": finite(pairs.residuals.iter().copied().fold(0.0, f64::max)),
         "tolerance": st.tolerance,
+        "clusters_verified": st.clusters_verified,
         "compression": curve.iter().map(|c| json!({
             "keep": c.keep, "rms_error": finite(c.rms), "max_error": finite(c.max),
         })).collect::<Vec<_>>(),
         "hks_time": hks_time.and_then(finite),
     });
+    if let Some(caveat) = st.caveat() {
+        report.warn(format!("spectral: {caveat}"));
+    }
     if components.count > 1 {
         report.warn(format!(
             "spectral: computed on the largest of {} components ({} of {} vertices); harmonic1 and hks are 0 on \

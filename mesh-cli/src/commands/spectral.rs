@@ -248,6 +248,9 @@ pub struct Summary {
     pub excluded_vertices: usize,
     /// Attempts of the largest solved piece (1 when the first converged).
     pub attempts: usize,
+    /// False when copies of a repeated eigenvalue may be missing (see
+    /// `mesh_spectral::EigenStats::clusters_verified`; a warning is printed).
+    pub clusters_verified: bool,
     /// Linear solves (columns) of the shift-invert iteration.
     pub operator_columns: usize,
     /// Wall times in milliseconds.
@@ -357,7 +360,7 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
     let mesh = &data.mesh;
     let mut options = args.operator.options()?;
     options.eigen.component = args.component;
-    let mh = ManifoldHarmonics::new(mesh, args.k, &options)?;
+    let mh = harmonics(mesh, args.k, &options)?;
     let pairs = mh.eigenpairs();
     let info = mh.operator_info().ok_or("no operator information")?;
     let start = Instant::now();
@@ -393,6 +396,7 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
         components_used: st.components_used,
         excluded_vertices: pairs.excluded.len(),
         attempts: st.attempts,
+        clusters_verified: st.clusters_verified,
         operator_columns: st.operator_columns,
         timings_ms: Timings {
             assembly: info.assembly_seconds * 1e3,
@@ -413,6 +417,16 @@ fn run_eigen(args: &EigenArgs) -> CliResult<()> {
         eprintln!("wrote {out}");
     }
     Ok(())
+}
+
+/// The harmonics of `mesh`, with a warning on stderr when the solver could
+/// not rule out missing copies of a repeated eigenvalue.
+fn harmonics(mesh: &TriMesh, k: usize, options: &HarmonicsOptions) -> CliResult<ManifoldHarmonics> {
+    let mh = ManifoldHarmonics::new(mesh, k, options)?;
+    if let Some(caveat) = mh.eigenpairs().stats.caveat() {
+        eprintln!("warning: {caveat}");
+    }
+    Ok(mh)
 }
 
 fn print_text(s: &Summary, pairs: &mesh_spectral::Eigenpairs) {
@@ -462,7 +476,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
     let mesh = &data.mesh;
     let transfer = transfer(args)?;
     let start = Instant::now();
-    let mh = ManifoldHarmonics::new(mesh, args.keep, &args.operator.options()?)?;
+    let mh = harmonics(mesh, args.keep, &args.operator.options()?)?;
     let filtered = filter_mesh(mesh, &mh, &transfer)?;
     let time_ms = ms(start);
     write_mesh(&args.out, &filtered, &args.write.options(Default::default()))?;
@@ -490,7 +504,7 @@ fn run_compress(args: &CompressArgs) -> CliResult<()> {
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let start = Instant::now();
-    let mh = ManifoldHarmonics::new(mesh, args.keep, &args.operator.options()?)?;
+    let mh = harmonics(mesh, args.keep, &args.operator.options()?)?;
     let mut keeps: Vec<usize> =
         std::iter::successors(Some(1usize), |k| k.checked_mul(2)).take_while(|&k| k < args.keep).collect();
     keeps.push(args.keep);
@@ -529,7 +543,7 @@ fn run_hks(args: &HksArgs) -> CliResult<()> {
     let mesh = &data.mesh;
     let start = Instant::now();
     let k = args.k.min(mesh.vertex_count());
-    let mh = ManifoldHarmonics::new(mesh, k, &args.operator.options()?)?;
+    let mh = harmonics(mesh, k, &args.operator.options()?)?;
     let times = hks_times(mh.eigenpairs(), args.times)?;
     let hks = heat_kernel_signature(mh.eigenpairs(), &times)?;
     let time_ms = ms(start);

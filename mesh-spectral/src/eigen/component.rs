@@ -166,8 +166,10 @@ fn factor(c: &Component, preferred: f64, fixed: bool, ordering: Option<&FillOrde
 /// restarts; attempt 3 also moves the shift four times further from the
 /// spectrum (a better conditioned `K`, for pencils where the solves limit
 /// the accuracy). A converged cluster as large as the block (a block of b
-/// vectors sees at most b copies of an eigenvalue) also triggers a larger
-/// block.
+/// vectors sees at most b copies of an eigenvalue) whose inertia count
+/// differs also triggers a larger block; when the block cannot grow, or
+/// the count still differs after the last attempt, the last converged
+/// pairs are returned with [`EigenStats::clusters_verified`] false.
 const MAX_ATTEMPTS: usize = 3;
 
 fn krylov_component(
@@ -206,11 +208,15 @@ fn krylov_component(
         match run.go(&mut stats) {
             Ok(partial) if partial.quality.misses() == 0 => {
                 let cluster = largest_cluster(&partial.values, scale);
+                if cluster < sizes.block || every_pair_found(si, c, &partial.values, deflate, scale, &mut stats)? {
+                    return Ok(Partial { stats, ..partial });
+                }
+                // Copies may be missing: again with a larger block, or
+                // flagged when the block cannot grow (the same run again
+                // would give the same pairs).
                 let larger = sizes.grown(want, dim, options, cluster + 2);
-                if cluster < sizes.block
-                    || larger.block == sizes.block
-                    || every_pair_found(si, c, &partial.values, deflate, scale, &mut stats)?
-                {
+                if larger.block == sizes.block {
+                    stats.clusters_verified = false;
                     return Ok(Partial { stats, ..partial });
                 }
                 sizes = larger;
@@ -231,7 +237,10 @@ fn krylov_component(
         }
     }
     match passed {
-        Some(partial) => Ok(Partial { stats, ..partial }),
+        Some(partial) => {
+            stats.clusters_verified = false;
+            Ok(Partial { stats, ..partial })
+        }
         None => Err(not_converged(&failed, want, &stats, options.tolerance)),
     }
 }

@@ -123,6 +123,7 @@ fn combined_stats(by_area: &[usize], partials: &[Option<Partial>]) -> EigenStats
     let mut stats = largest.unwrap_or_else(|| EigenStats::empty(EigenSolver::NullSpace));
     // A fold from +0: an empty `sum` of f64 is -0.
     let sum = |f: fn(&EigenStats) -> f64| solved.iter().fold(0.0, |a, s| a + f(s));
+    stats.clusters_verified = solved.iter().all(|s| s.clusters_verified);
     stats.restarts = solved.iter().map(|s| s.restarts).sum();
     stats.operator_columns = solved.iter().map(|s| s.operator_columns).sum();
     stats.factor_seconds = sum(|s| s.factor_seconds);

@@ -219,6 +219,16 @@ pub struct EigenStats {
     pub basis_size: usize,
     /// Attempts for the largest solved component (1 when the first converged).
     pub attempts: usize,
+    /// Whether no copy of a repeated eigenvalue can be missing. A block of
+    /// b vectors sees at most b copies of one eigenvalue, so a returned
+    /// cluster of equal values as large as the block is checked by counting
+    /// the eigenvalues below it by inertia (Sylvester's law), and solved
+    /// again with a larger block when the count differs. `false` when, on
+    /// some component, the count still differed (or could not be trusted)
+    /// with the largest block tried: the values from that cluster on may
+    /// then be too large. `true` for dense solves, clusters smaller than the
+    /// block, and counts that agree.
+    pub clusters_verified: bool,
     /// Thick restarts, summed over components and attempts.
     pub restarts: usize,
     /// Shift-invert applications counted in columns (linear solves).
@@ -241,6 +251,16 @@ pub struct EigenStats {
 }
 
 impl EigenStats {
+    /// What a caller should tell its user about these pairs: `Some` when
+    /// [`EigenStats::clusters_verified`] is false.
+    pub fn caveat(&self) -> Option<&'static str> {
+        (!self.clusters_verified).then_some(
+            "a cluster of equal eigenvalues filled the largest block tried and the inertia count of the \
+             eigenvalues below it disagreed: copies of a repeated eigenvalue may be missing, and the values \
+             from that cluster on may be too large",
+        )
+    }
+
     /// Zero counts and times.
     pub(crate) fn empty(method: EigenSolver) -> Self {
         Self {
@@ -253,6 +273,7 @@ impl EigenStats {
             block_size: 0,
             basis_size: 0,
             attempts: 0,
+            clusters_verified: true,
             restarts: 0,
             operator_columns: 0,
             factor_nonzeros: 0,

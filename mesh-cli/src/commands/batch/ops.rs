@@ -97,11 +97,16 @@ pub fn run(mesh: &TriMesh, ops: &[Op], params: Params) -> CliResult<Outcome> {
                         Some(out.time("eigenpairs", || mesh_spectral::ManifoldHarmonics::new(mesh, k, &options))?);
                 }
                 let Some(mh) = harmonics.as_ref() else { continue };
-                if op == Op::Eigen {
+                let mut section = if op == Op::Eigen {
                     json!({ "k": mh.len(), "values": mh.eigenvalues() })
                 } else {
                     hks(mh, params.times, &mut out)?
+                };
+                // Copies of a repeated eigenvalue may be missing.
+                if let (Some(caveat), Some(fields)) = (mh.eigenpairs().stats.caveat(), section.as_object_mut()) {
+                    fields.insert("warning".to_owned(), json!(caveat));
                 }
+                section
             }
         };
         out.sections.insert(op.name().to_owned(), section);
