@@ -325,7 +325,7 @@ impl Run<'_> {
             let p = self.st.apply(x.as_ref());
             let values = rayleigh_quotients(&p.lx, &c.mass, x.as_ref());
             let q = quality(&p, &c.mass, &values, x.as_ref(), scale, tol);
-            Ok(Verdict { ratios: q.ratios(), vectors: x })
+            Ok(Verdict { ratios: q.ratios(), accepted: (x, p) })
         });
         stats.iterate_seconds += t.elapsed().as_secs_f64();
         stats.block_size = cfg.block;
@@ -344,8 +344,9 @@ impl Run<'_> {
         stats.solve_seconds += outcome.timings.apply;
         stats.orthogonalize_seconds += outcome.timings.orthogonalize;
         let t = Instant::now();
-        let (values, vectors) = final_rayleigh_ritz(self.st, &c.mass, outcome.vectors)?;
-        let quality = quality(&self.st.apply(vectors.as_ref()), &c.mass, &values, vectors.as_ref(), scale, tol);
+        let (x, products) = outcome.accepted;
+        let (values, vectors, products) = final_rayleigh_ritz(&c.mass, x, products)?;
+        let quality = quality(&products, &c.mass, &values, vectors.as_ref(), scale, tol);
         stats.finalize_seconds += t.elapsed().as_secs_f64();
         Ok(Partial { values, vectors, quality, stats: stats.clone() })
     }

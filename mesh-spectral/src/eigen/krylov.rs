@@ -63,11 +63,12 @@ pub(crate) struct Config {
 }
 
 /// What the caller's acceptance test returns for the candidate pairs.
-pub(crate) struct Verdict {
+pub(crate) struct Verdict<T> {
     /// Per pair, explicit residual divided by its target (<= 1 passes).
     pub ratios: Vec<f64>,
-    /// The caller's eigenvectors built from the candidates.
-    pub vectors: Mat<f64>,
+    /// What the caller built from the candidates (its eigenvectors, and
+    /// what it computed to test them).
+    pub accepted: T,
 }
 
 /// Where the time of a run went.
@@ -82,9 +83,9 @@ pub(crate) struct Timings {
 }
 
 /// Result of a converged run.
-pub(crate) struct Outcome {
-    /// The vectors of the accepted [`Verdict`].
-    pub vectors: Mat<f64>,
+pub(crate) struct Outcome<T> {
+    /// What the accepted [`Verdict`] carried.
+    pub accepted: T,
     /// Restarts performed.
     pub restarts: usize,
     /// Operator applications, counted in columns.
@@ -98,11 +99,11 @@ pub(crate) struct Outcome {
 /// and purified vectors `u = B y / theta` (first from the Krylov relation;
 /// if they fail, from one more application of `B`: over many restarts the
 /// relation drifts by rounding and limits the accuracy of the former).
-pub(crate) fn solve<O: BlockOperator>(
+pub(crate) fn solve<O: BlockOperator, T>(
     op: &O,
     cfg: &Config,
-    mut accept: impl FnMut(&[f64], MatRef<'_, f64>, MatRef<'_, f64>) -> Result<Verdict>,
-) -> Result<Outcome> {
+    mut accept: impl FnMut(&[f64], MatRef<'_, f64>, MatRef<'_, f64>) -> Result<Verdict<T>>,
+) -> Result<Outcome<T>> {
     let n = op.dim();
     let (b, m, want) = (cfg.block, cfg.basis, cfg.want);
     if b == 0 || want == 0 || want > cfg.nev || cfg.nev + 2 * b > m || m + b > n {
@@ -157,7 +158,7 @@ pub(crate) fn solve<O: BlockOperator>(
                 let ratio = verdict.ratios.iter().copied().fold(0.0, f64::max);
                 if ratio <= 1.0 {
                     times.other += clock.elapsed().as_secs_f64();
-                    return Ok(Outcome { vectors: verdict.vectors, restarts: restart, columns, timings: times });
+                    return Ok(Outcome { accepted: verdict.accepted, restarts: restart, columns, timings: times });
                 }
                 if fresh {
                     // The estimate was too optimistic (uneven masses): tighten it.
@@ -532,14 +533,14 @@ mod tests {
         }
     }
 
-    fn run(values: Vec<f64>, want: usize, block: usize) -> Outcome {
+    fn run(values: Vec<f64>, want: usize, block: usize) -> Outcome<Mat<f64>> {
         let n = values.len();
         let op = Diagonal(values);
         let nev = want + 2;
         let basis = (nev + 3 * block).min(n - block);
         let cfg = Config { want, nev, block, basis, tol: 1e-12, max_restarts: 500, seed: 3 };
         solve(&op, &cfg, |theta, _, u| {
-            Ok(Verdict { ratios: vec![0.0], vectors: Mat::from_fn(1, theta.len(), |_, j| theta[j] + 0.0 * u[(0, j)]) })
+            Ok(Verdict { ratios: vec![0.0], accepted: Mat::from_fn(1, theta.len(), |_, j| theta[j] + 0.0 * u[(0, j)]) })
         })
         .unwrap()
     }
@@ -552,7 +553,7 @@ mod tests {
             *v = 1.5;
         }
         let out = run(values, 8, 6);
-        for (j, t) in out.vectors.row(0).iter().enumerate() {
+        for (j, t) in out.accepted.row(0).iter().enumerate() {
             let expect = if j < 5 { 1.5 } else { 1.0 / (2.0 + (j - 5) as f64) };
             assert!((t - expect).abs() < 1e-12, "{j}: {t} vs {expect}");
         }
@@ -566,7 +567,7 @@ mod tests {
         values[20] = 2.0;
         values[30] = 1.0;
         let out = run(values, 3, 4);
-        let theta = out.vectors.row(0);
+        let theta = out.accepted.row(0);
         assert!((theta[0] - 3.0).abs() < 1e-12 && (theta[2] - 1.0).abs() < 1e-12, "{theta:?}");
     }
 }
