@@ -272,9 +272,8 @@ fn every_pair_found(
     scale: f64,
     stats: &mut EigenStats,
 ) -> Result<bool> {
-    let close = |a: f64, b: f64| (b - a).abs() <= CLUSTER * (b.abs() + scale);
     let mut first = values.len().saturating_sub(1);
-    while first > 0 && close(values[first - 1], values[first]) {
+    while first > 0 && same_value(values[first - 1], values[first], scale) {
         first -= 1;
     }
     let Some(&bottom) = values.get(first) else { return Ok(true) };
@@ -353,16 +352,22 @@ impl Run<'_> {
 }
 
 /// Relative distance under which two values count as copies of one
-/// eigenvalue: `|a - b| <= CLUSTER (|b| + scale)`.
+/// eigenvalue (see [`same_value`]).
 const CLUSTER: f64 = 1e-8;
 
-/// Size of the largest run of ascending values closer than
-/// `CLUSTER (|lambda| + scale)` to their neighbour.
+/// Whether `a` and `b` count as copies of one eigenvalue:
+/// `|a - b| <= CLUSTER (|b| + scale)`.
+fn same_value(a: f64, b: f64, scale: f64) -> bool {
+    (b - a).abs() <= CLUSTER * (b.abs() + scale)
+}
+
+/// Size of the largest run of ascending values that are [`same_value`]
+/// as their neighbour.
 fn largest_cluster(values: &[f64], scale: f64) -> usize {
     let mut best = usize::from(!values.is_empty());
     let mut run = 1;
     for w in values.windows(2) {
-        if (w[1] - w[0]).abs() <= CLUSTER * (w[1].abs() + scale) {
+        if same_value(w[0], w[1], scale) {
             run += 1;
             best = best.max(run);
         } else {
