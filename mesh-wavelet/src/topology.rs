@@ -48,6 +48,7 @@ pub(crate) enum Kind {
 /// Half-edge topology of an oriented 2-manifold triangle mesh; the corner
 /// array is the face list itself (borrowed) or a copy.
 #[derive(Debug, Clone)]
+#[cfg_attr(test, derive(PartialEq))]
 pub(crate) struct Topology<'a> {
     corner: Cow<'a, [u32]>,
     twin: Vec<u32>,
@@ -498,6 +499,30 @@ mod tests {
         // for the maps and row fills.
         same_as_connectivity(&shapes::icosphere(6).unwrap());
         same_as_connectivity(&shapes::grid(1.0, 1.0, 150, 120).unwrap());
+    }
+
+    #[test]
+    fn the_build_does_not_depend_on_the_thread_count() {
+        // A sphere of 40,962 vertices (five chunks) renumbered at random, so
+        // that most twins and edges are written by another chunk than the
+        // one of the half-edge's face (and still agree with mesh-kernel);
+        // and a grid with a boundary.
+        let sphere = shapes::icosphere(6).unwrap();
+        let map = mesh_kernel::random::SplitMix64::new(7).permutation(sphere.vertex_count());
+        let shuffled: Vec<[u32; 3]> = sphere.faces().iter().map(|f| f.map(|v| map[v as usize])).collect();
+        let positions = vec![mesh_kernel::glam::DVec3::ZERO; sphere.vertex_count()];
+        same_as_connectivity(&mesh_kernel::TriMesh::new(positions, shuffled.clone()).unwrap());
+        let grid = shapes::grid(1.0, 1.0, 150, 120).unwrap();
+        for (n, faces) in [(sphere.vertex_count(), &shuffled[..]), (grid.vertex_count(), grid.faces())] {
+            let build = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| Topology::new(n, faces).unwrap())
+            };
+            let one = build(1);
+            for threads in [2, 3, 8] {
+                assert!(build(threads) == one, "{threads} threads");
+            }
+        }
     }
 
     proptest::proptest! {
