@@ -63,7 +63,7 @@ pub struct Components {
 pub struct Connectivity {
     corner_vertex: Vec<VertexId>,
     twin: Vec<HalfedgeId>,
-    halfedge_edge: Vec<EdgeId>,
+    face_edges: Vec<[EdgeId; 3]>,
     edges: Vec<[VertexId; 2]>,
     edge_offsets: Vec<u32>,
     edge_halfedges: Vec<HalfedgeId>,
@@ -166,7 +166,8 @@ impl Connectivity {
 
         // Runs of equal larger endpoint in a sorted bucket are edges.
         let mut twin = vec![HalfedgeId::INVALID; nh];
-        let mut halfedge_edge = vec![EdgeId::INVALID; nh];
+        let mut face_edges = vec![[EdgeId::INVALID; 3]; faces.len()];
+        let halfedge_edge = face_edges.as_flattened_mut();
         let mut edges = Vec::with_capacity(nh / 2 + 1);
         let mut edge_offsets = Vec::with_capacity(nh / 2 + 2);
         let mut report = NonManifoldReport::default();
@@ -309,7 +310,7 @@ impl Connectivity {
         Self {
             corner_vertex,
             twin,
-            halfedge_edge,
+            face_edges,
             edges,
             edge_offsets,
             edge_halfedges,
@@ -380,7 +381,7 @@ impl Connectivity {
     /// The undirected edge of a half-edge.
     #[inline]
     pub fn edge(&self, h: HalfedgeId) -> EdgeId {
-        self.halfedge_edge[h.idx()]
+        self.face_edges.as_flattened()[h.idx()]
     }
 
     /// Endpoints of an edge, smaller index first.
@@ -416,8 +417,13 @@ impl Connectivity {
     /// The three edges of a face, edge `k` running from corner `k` to `k + 1`.
     #[inline]
     pub fn face_edges(&self, f: FaceId) -> [EdgeId; 3] {
-        let h = 3 * f.idx();
-        [self.halfedge_edge[h], self.halfedge_edge[h + 1], self.halfedge_edge[h + 2]]
+        self.face_edges[f.idx()]
+    }
+
+    /// [`Connectivity::face_edges`] of every face, indexed by face.
+    #[inline]
+    pub fn edges_by_face(&self) -> &[[EdgeId; 3]] {
+        &self.face_edges
     }
 
     /// The faces across the three edges of `f` (`None` on the boundary or

@@ -59,6 +59,13 @@ macro_rules! typed_id {
                 id.idx()
             }
         }
+
+        impl From<$name> for u32 {
+            #[inline]
+            fn from(id: $name) -> u32 {
+                id.0
+            }
+        }
     };
 }
 

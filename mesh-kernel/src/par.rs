@@ -84,9 +84,9 @@ pub const SCATTER_CHUNK: usize = 1 << 15;
 /// On meshes where a sample of the faces shows more than one corner in
 /// eight outside its range, one loop adds everything in face order.
 /// Either way the order depends on the mesh only.
-pub fn scatter<A, V>(
+pub fn scatter<A, V, I>(
     n: usize,
-    faces: &[[u32; 3]],
+    faces: &[[I; 3]],
     init: A,
     values: impl Fn(usize) -> [V; 3] + Sync + Send,
     add: impl Fn(&mut A, V) + Sync + Send,
@@ -94,6 +94,8 @@ pub fn scatter<A, V>(
 where
     A: Clone + Send + Sync,
     V: Copy + Send,
+    I: Copy + Sync,
+    u32: From<I>,
 {
     scatter_with(n, faces, init, &Single(values), add)
 }
@@ -104,9 +106,9 @@ where
 /// ([`crate::operators::corner_angles_and_masses_batch`]). Batches start at
 /// the first face of each chunk and every `B` faces after it; the sums are
 /// added in the same order as [`scatter`]'s.
-pub fn scatter_batched<A, V, const B: usize>(
+pub fn scatter_batched<A, V, I, const B: usize>(
     n: usize,
-    faces: &[[u32; 3]],
+    faces: &[[I; 3]],
     init: A,
     values: impl Fn(usize) -> [[V; 3]; B] + Sync + Send,
     add: impl Fn(&mut A, V) + Sync + Send,
@@ -114,6 +116,8 @@ pub fn scatter_batched<A, V, const B: usize>(
 where
     A: Clone + Send + Sync,
     V: Copy + Send,
+    I: Copy + Sync,
+    u32: From<I>,
 {
     scatter_with(n, faces, init, &Batched(values), add)
 }
@@ -146,9 +150,9 @@ impl<V, F: Fn(usize) -> [[V; 3]; B] + Sync + Send, const B: usize> FaceValues<V,
 }
 
 /// [`scatter_batched`] over any [`FaceValues`].
-fn scatter_with<A, V, const B: usize>(
+fn scatter_with<A, V, I, const B: usize>(
     n: usize,
-    faces: &[[u32; 3]],
+    faces: &[[I; 3]],
     init: A,
     values: &impl FaceValues<V, B>,
     add: impl Fn(&mut A, V) + Sync + Send,
@@ -156,12 +160,14 @@ fn scatter_with<A, V, const B: usize>(
 where
     A: Clone + Send + Sync,
     V: Copy + Send,
+    I: Copy + Sync,
+    u32: From<I>,
 {
     let mut out = vec![init; n];
     let chunks = faces.len().div_ceil(SCATTER_CHUNK);
     let bounds = if chunks > 1 { vertex_ranges(n, faces, chunks) } else { Vec::new() };
     if chunks <= 1 || !mostly_owned(faces, &bounds) {
-        each_corner::<V, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
+        each_corner::<V, I, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
         return out;
     }
     let mut owned = Vec::with_capacity(chunks);
@@ -174,7 +180,7 @@ where
     let chunk = |(c, range): (usize, &mut [A])| {
         let (lo, first) = (bounds[c], c * SCATTER_CHUNK);
         let mut aside = Vec::with_capacity(SCATTER_CHUNK / 2);
-        each_corner::<V, B>(faces, values, first, faces.len().min(first + SCATTER_CHUNK), &mut |v, x| match range
+        each_corner::<V, I, B>(faces, values, first, faces.len().min(first + SCATTER_CHUNK), &mut |v, x| match range
             .get_mut((v as usize).wrapping_sub(lo))
         {
             Some(slot) => add(slot, x),
@@ -198,18 +204,20 @@ where
 /// Faces `lo..hi` of a [`scatter_batched`], batch by batch, each corner's
 /// value to `sink(vertex, value)`; generic in the sink so that it inlines.
 #[inline(always)]
-fn each_corner<V: Copy, const B: usize>(
-    faces: &[[u32; 3]],
+fn each_corner<V: Copy, I: Copy, const B: usize>(
+    faces: &[[I; 3]],
     values: &impl FaceValues<V, B>,
     lo: usize,
     hi: usize,
     sink: &mut impl FnMut(u32, V),
-) {
+) where
+    u32: From<I>,
+{
     for first in (lo..hi).step_by(B.max(1)) {
         let x = values.of(first);
         for (tri, x) in faces[first..hi.min(first + B)].iter().zip(x) {
             for k in 0..3 {
-                sink(tri[k], x[k]);
+                sink(u32::from(tri[k]), x[k]);
             }
         }
     }
@@ -219,13 +227,16 @@ fn each_corner<V: Copy, const B: usize>(
 /// outside its chunk's vertex range: otherwise setting corners aside costs
 /// more than a second thread gains (meshes whose faces do not follow their
 /// vertices), and [`scatter`] runs one loop in face order.
-fn mostly_owned(faces: &[[u32; 3]], bounds: &[usize]) -> bool {
+fn mostly_owned<I: Copy>(faces: &[[I; 3]], bounds: &[usize]) -> bool
+where
+    u32: From<I>,
+{
     let (mut seen, mut outside) = (0usize, 0usize);
     for f in (0..faces.len()).step_by(61) {
         let c = f / SCATTER_CHUNK;
         for &v in &faces[f] {
             seen += 1;
-            outside += usize::from(!(bounds[c]..bounds[c + 1]).contains(&(v as usize)));
+            outside += usize::from(!(bounds[c]..bounds[c + 1]).contains(&(u32::from(v) as usize)));
         }
     }
     8 * outside <= seen
@@ -234,8 +245,11 @@ fn mostly_owned(faces: &[[u32; 3]], bounds: &[usize]) -> bool {
 /// Start of each chunk's vertex range (and `n` at the end): the first
 /// corners of the chunks' first faces where they increase, equal ranges
 /// otherwise.
-fn vertex_ranges(n: usize, faces: &[[u32; 3]], chunks: usize) -> Vec<usize> {
-    let mut bounds: Vec<usize> = (0..chunks).map(|c| faces[c * SCATTER_CHUNK][0] as usize).collect();
+fn vertex_ranges<I: Copy>(n: usize, faces: &[[I; 3]], chunks: usize) -> Vec<usize>
+where
+    u32: From<I>,
+{
+    let mut bounds: Vec<usize> = (0..chunks).map(|c| u32::from(faces[c * SCATTER_CHUNK][0]) as usize).collect();
     bounds[0] = 0;
     bounds.push(n);
     if !bounds.windows(2).all(|w| w[0] < w[1]) {

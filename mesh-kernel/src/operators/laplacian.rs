@@ -115,19 +115,18 @@ fn face_halfedge_cotans(mesh: &TriMesh, f: usize) -> [f64; 3] {
 /// (eq. 2.15 up to the factor 1/2 that makes it the FEM stiffness), summed
 /// over however many faces the edge has (one on the boundary). Negative for
 /// edges opposite obtuse angles (chapter section 2.2.2). O(F), in one pass
-/// over the faces, adding to the edges in face order.
+/// over the faces, adding into the edges with [`par::scatter`] (two
+/// threads on meshes whose faces follow their vertices, in an order that
+/// depends on the mesh only).
 pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
-    // One thread: per-face cotangents kept in an array and gathered per edge
-    // on two threads took 2.5 times longer on one (40k vertices) and were
-    // no faster on two at 1.9M vertices (the fresh array's page faults).
     let conn = mesh.connectivity();
-    let mut w = vec![0.0; conn.edge_count()];
-    for f in 0..mesh.face_count() {
-        for (k, c) in face_halfedge_cotans(mesh, f).into_iter().enumerate() {
-            w[conn.edge(crate::HalfedgeId((3 * f + k) as u32)).idx()] += 0.5 * c;
-        }
-    }
-    w
+    par::scatter(
+        conn.edge_count(),
+        conn.edges_by_face(),
+        0.0,
+        |f| face_halfedge_cotans(mesh, f).map(|c| 0.5 * c),
+        |w, c| *w += c,
+    )
 }
 
 /// The cotangent Laplacian L (eq. 2.15): L_ij = -(cot alpha_ij + cot beta_ij)/2,
