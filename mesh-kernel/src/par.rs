@@ -5,6 +5,8 @@
 //! only on its index, and [`scatter`] adds in an order fixed by the mesh, not
 //! by the thread count.
 
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
+
 /// Items from which a map runs in parallel: below it, one loop is faster
 /// than handing out tasks (per-face loops of ~10 ns per item).
 pub const PARALLEL_FROM: usize = 1 << 12;
@@ -38,31 +40,150 @@ pub fn update<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
 /// rows. `offsets` must start at 0, never decrease and end at
 /// `data.len()`.
 pub fn rows<T: Send>(data: &mut [T], offsets: &[usize], f: impl Fn(usize, &mut [T]) + Sync + Send) {
+    rows_with(data, offsets, || (), |_, i, row| f(i, row));
+}
+
+/// Like [`rows`], with one scratch value per task (created by `init`) and
+/// a result per row: `f(&mut scratch, i, row)` for every row `i`, the
+/// results in row order.
+pub fn rows_with<T: Send, S, R: Send>(
+    data: &mut [T],
+    offsets: &[usize],
+    init: impl Fn() -> S + Sync + Send,
+    f: impl Fn(&mut S, usize, &mut [T]) -> R + Sync + Send,
+) -> Vec<R> {
     let n = offsets.len().saturating_sub(1);
     let block = |first: usize, data: &mut [T]| {
-        let base = offsets[first];
-        for i in first..(first + MIN_TASK).min(n) {
-            f(i, &mut data[offsets[i] - base..offsets[i + 1] - base]);
-        }
+        let (base, mut scratch) = (offsets[first], init());
+        let rows = first..(first + MIN_TASK).min(n);
+        rows.map(|i| f(&mut scratch, i, &mut data[offsets[i] - base..offsets[i + 1] - base])).collect::<Vec<R>>()
     };
+    let mut blocks = Vec::with_capacity(n.div_ceil(MIN_TASK));
+    let mut rest = data;
+    for first in (0..n).step_by(MIN_TASK) {
+        let len = offsets[(first + MIN_TASK).min(n)] - offsets[first];
+        let (head, tail) = rest.split_at_mut(len);
+        blocks.push((first, head));
+        rest = tail;
+    }
     #[cfg(feature = "rayon")]
     if n >= PARALLEL_FROM {
         use rayon::prelude::*;
-        let mut blocks = Vec::with_capacity(n.div_ceil(MIN_TASK));
-        let mut rest = data;
-        for first in (0..n).step_by(MIN_TASK) {
-            let len = offsets[(first + MIN_TASK).min(n)] - offsets[first];
-            let (head, tail) = rest.split_at_mut(len);
-            blocks.push((first, head));
-            rest = tail;
+        let done: Vec<Vec<R>> = blocks.into_par_iter().map(|(first, data)| block(first, data)).collect();
+        return concat(done, n);
+    }
+    concat(blocks.into_iter().map(|(first, data)| block(first, data)), n)
+}
+
+/// The parts one after the other, `len` values in all (a copy per part,
+/// not a step per value).
+fn concat<R>(parts: impl IntoIterator<Item = Vec<R>>, len: usize) -> Vec<R> {
+    let mut all = Vec::with_capacity(len);
+    for mut part in parts {
+        all.append(&mut part);
+    }
+    all
+}
+
+/// A stable counting sort of `G len` items given in records of `G` (the
+/// corners of faces, say): item `G i + j` has key `keys(i)[j] < key_count`
+/// and value `values(i)[j]`. Returns the start of each key's group
+/// (`key_count + 1` offsets) and the values in group order, the items of
+/// one key in increasing item number.
+///
+/// On several threads the records are counted and placed in runs side by
+/// side, each run's items of a key after those of the runs before it,
+/// which is the order of one run: the result does not depend on the thread
+/// count. `G len` must fit in `u32`.
+pub fn group_by_key<T, const G: usize>(
+    key_count: usize,
+    len: usize,
+    keys: impl Fn(usize) -> [usize; G] + Sync + Send,
+    values: impl Fn(usize) -> [T; G] + Sync + Send,
+) -> (Vec<usize>, Vec<T>)
+where
+    T: Into<u64> + From<u64> + Clone + Send,
+{
+    let runs = if G * len >= PARALLEL_FROM { threads().min(MAX_RUNS) } else { 1 };
+    let piece = len.div_ceil(runs).max(1);
+    let records = |r: usize| r * piece..len.min((r + 1) * piece);
+    let counts = map_heavy(runs, |r| {
+        let mut count = vec![0u32; key_count];
+        for i in records(r) {
+            keys(i).into_iter().for_each(|k| count[k] += 1);
         }
-        blocks.into_par_iter().for_each(|(first, data)| block(first, data));
-        return;
+        count
+    });
+    // Where each run's first item of each key goes.
+    let mut fills = counts;
+    let mut offsets = Vec::with_capacity(key_count + 1);
+    let mut total = 0u32;
+    for k in 0..key_count {
+        offsets.push(total as usize);
+        for fill in &mut fills {
+            total += std::mem::replace(&mut fill[k], total);
+        }
     }
-    for first in (0..n).step_by(MIN_TASK) {
-        let (lo, hi) = (offsets[first], offsets[(first + MIN_TASK).min(n)]);
-        block(first, &mut data[lo..hi]);
+    offsets.push(total as usize);
+    // Each run places its items after its own cursors; every slot is
+    // written once. One run writes them straight into the result.
+    if runs == 1 {
+        let mut grouped: Vec<T> = vec![T::from(0); G * len];
+        place(records(0), fills[0].clone(), &keys, &values, |p, x| grouped[p] = x);
+        return (offsets, grouped);
     }
+    let slots = atomic_slots64(G * len);
+    map_heavy(runs, |r| place(records(r), fills[r].clone(), &keys, &values, |p, x| slots[p].store(x.into(), Relaxed)));
+    (offsets, slots.into_iter().map(|s| T::from(s.into_inner())).collect())
+}
+
+/// The items of `records` of a [`group_by_key`] to `put(position, value)`,
+/// each after the cursor `fill` of its key (generic in `put`, so that it
+/// inlines).
+#[inline(always)]
+fn place<T, const G: usize>(
+    records: std::ops::Range<usize>,
+    mut fill: Vec<u32>,
+    keys: &impl Fn(usize) -> [usize; G],
+    values: &impl Fn(usize) -> [T; G],
+    mut put: impl FnMut(usize, T),
+) {
+    for i in records {
+        for (k, x) in keys(i).into_iter().zip(values(i)) {
+            put(fill[k] as usize, x);
+            fill[k] += 1;
+        }
+    }
+}
+
+/// Most runs of a [`group_by_key`]: each costs a count array over the keys.
+const MAX_RUNS: usize = 4;
+
+/// The number of threads a parallel map started here runs on (1 without
+/// the `rayon` feature).
+fn threads() -> usize {
+    #[cfg(feature = "rayon")]
+    return rayon::current_num_threads();
+    #[cfg(not(feature = "rayon"))]
+    1
+}
+
+/// `len` slots holding `value`, for arrays that several threads fill, each
+/// slot by one of them (relaxed stores: plain writes on x86); [`plain`]
+/// turns them back into values once every thread is done.
+pub fn atomic_slots(len: usize, value: u32) -> Vec<AtomicU32> {
+    (0..len).map(|_| AtomicU32::new(value)).collect()
+}
+
+/// The values of [`atomic_slots`] once every writer is done, collected in
+/// place (same layout).
+pub fn plain(slots: Vec<AtomicU32>) -> Vec<u32> {
+    slots.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// `len` zeroed 64-bit [`atomic_slots`].
+fn atomic_slots64(len: usize) -> Vec<AtomicU64> {
+    (0..len).map(|_| AtomicU64::new(0)).collect()
 }
 
 /// Faces per chunk of a [`scatter`] (the chunk count depends on the face
@@ -362,6 +483,52 @@ mod tests {
                 assert!(one.iter().zip(run(threads)).all(|(a, b)| a.to_bits() == b.to_bits()), "{threads} threads");
             }
         }
+    }
+
+    /// A stable sort by key, the plain way, on 1, 2, 3 and 8 threads
+    /// (one run, and two to four runs side by side), with keys in any
+    /// order and keys without items.
+    #[test]
+    fn group_by_key_is_a_stable_counting_sort() {
+        let mut rng = SplitMix64::new(5);
+        for (records, key_count) in [(10, 4), (3 * PARALLEL_FROM + 7, 50), (3 * PARALLEL_FROM, 20_000)] {
+            let keys: Vec<[usize; 3]> =
+                (0..records).map(|_| [rng.below(key_count), rng.below(key_count), rng.below(key_count)]).collect();
+            let mut expect: Vec<(usize, u64)> =
+                (0..3 * records).map(|item| (keys[item / 3][item % 3], item as u64)).collect();
+            expect.sort_by_key(|&(k, _)| k);
+            let run = || group_by_key(key_count, records, |i| keys[i], |i| [0, 1, 2].map(|j| (3 * i + j) as u64));
+            #[cfg(feature = "rayon")]
+            let results: Vec<_> = [1, 2, 3, 8]
+                .map(|threads| rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(run))
+                .into();
+            #[cfg(not(feature = "rayon"))]
+            let results = vec![run()];
+            for (offsets, values) in results {
+                assert_eq!(values, expect.iter().map(|&(_, item)| item).collect::<Vec<_>>());
+                for k in 0..key_count {
+                    let group = &expect[offsets[k]..offsets[k + 1]];
+                    assert!(group.iter().all(|&(key, _)| key == k), "key {k}");
+                }
+                assert_eq!(offsets[key_count], 3 * records);
+            }
+        }
+    }
+
+    #[test]
+    fn rows_with_keeps_one_scratch_per_task_and_the_row_order() {
+        let n = 3 * PARALLEL_FROM + 5;
+        let offsets: Vec<usize> = (0..=n).map(|i| 2 * i).collect();
+        let mut data = vec![0usize; 2 * n];
+        let out = rows_with(&mut data, &offsets, Vec::new, |seen: &mut Vec<usize>, i, row| {
+            seen.push(i);
+            row.fill(i);
+            // Rows of one task come in order, from the task's first.
+            seen.windows(2).all(|w| w[1] == w[0] + 1) && seen[0].is_multiple_of(MIN_TASK)
+        });
+        assert_eq!(out.len(), n);
+        assert!(out.iter().all(|&ok| ok));
+        assert!(data.iter().enumerate().all(|(s, &i)| i == s / 2));
     }
 
     #[test]

@@ -6,7 +6,7 @@
 /// O(alpha(n)) amortized (path halving; union by smaller index keeps the
 /// lowest element as representative, as welding and component numbering
 /// need).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct UnionFind {
     parent: Vec<u32>,
 }

@@ -126,7 +126,7 @@ impl Outgoing {
         }
         start.push(total);
         // Every slot is written once (relaxed stores: plain writes on x86).
-        let (out, dest) = (slots(corner.len(), 0), slots(corner.len(), 0));
+        let (out, dest) = (par::atomic_slots(corner.len(), 0), par::atomic_slots(corner.len(), 0));
         par::map_heavy(runs.len(), |r| {
             let mut fill = fills[r].clone();
             for (k, &v) in runs[r].iter().enumerate() {
@@ -137,7 +137,7 @@ impl Outgoing {
                 fill[v as usize] += 1;
             }
         });
-        Self { start, out: plain(out), dest: plain(dest) }
+        Self { start, out: par::plain(out), dest: par::plain(dest) }
     }
 
     #[inline]
@@ -221,18 +221,6 @@ impl Outgoing {
     }
 }
 
-/// `len` slots holding `value`, written by several threads (each slot by
-/// one) with relaxed stores: plain writes on x86.
-fn slots(len: usize, value: u32) -> Vec<AtomicU32> {
-    (0..len).map(|_| AtomicU32::new(value)).collect()
-}
-
-/// The values of `slots` once every thread is done, collected in place
-/// (same layout).
-fn plain(slots: Vec<AtomicU32>) -> Vec<u32> {
-    slots.into_iter().map(AtomicU32::into_inner).collect()
-}
-
 /// Orders a vertex's outgoing half-edges `ring` counter-clockwise in place,
 /// from the boundary one if there is one (else from the first); false when
 /// they do not form one fan.
@@ -270,7 +258,7 @@ impl<'a> Topology<'a> {
         let outgoing = Outgoing::new(n, corner);
         // Every slot is written once, by the chunk of its half-edge's
         // smaller endpoint (relaxed stores: plain writes on x86).
-        let (twin, edge_of) = (slots(corner.len(), NONE), slots(corner.len(), NONE));
+        let (twin, edge_of) = (par::atomic_slots(corner.len(), NONE), par::atomic_slots(corner.len(), NONE));
         let chunks = par::map_heavy(n.div_ceil(CHUNK), |c| {
             let vertices = (c * CHUNK) as u32..(n.min((c + 1) * CHUNK)) as u32;
             outgoing.number_edges(corner, vertices, &twin, &edge_of)
@@ -283,7 +271,7 @@ impl<'a> Topology<'a> {
             edges.extend_from_slice(&chunk_edges);
             edge_he.extend_from_slice(&chunk_he);
         }
-        let twin = plain(twin);
+        let twin = par::plain(twin);
         // Chunk-local edge numbers made global.
         let edge_of = par::map(corner.len(), |h| match edge_of[h].load(Relaxed) {
             NONE => NONE,

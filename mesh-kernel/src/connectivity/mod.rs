@@ -7,15 +7,17 @@
 //! edges have a single half-edge whose twin is `None`.
 //!
 //! Construction is O(V + F) and sort-based: half-edges are bucketed by their
-//! smaller endpoint with a counting sort, then each (tiny) bucket is sorted by
-//! the larger endpoint, so equal edges become adjacent runs. No hashing. The
-//! passes that meet half-edges in an order other than their own carry what
-//! they need with them (each sorted entry its direction, each ring slot the
-//! next half-edge around the vertex), so that no pass looks up a half-edge
-//! at random: on meshes whose faces do not follow their vertices those
-//! lookups are cache misses.
+//! smaller endpoint with a counting sort ([`crate::par::group_by_key`]),
+//! then each (tiny) bucket is sorted by the larger endpoint, so equal edges
+//! become adjacent runs; no hashing. The counting sorts, the bucket sorts
+//! and the walk around every vertex run on [`crate::par`]'s threads, with
+//! a result that does not depend on their number.
 
 use std::sync::OnceLock;
+
+mod build;
+
+pub use build::number_edges;
 
 use crate::error::{MeshError, NonManifoldReport, Result};
 use crate::ids::{EdgeId, FaceId, HalfedgeId, VertexId};
@@ -63,7 +65,7 @@ pub struct Components {
 pub struct Connectivity {
     corner_vertex: Vec<VertexId>,
     twin: Vec<HalfedgeId>,
-    face_edges: Vec<[EdgeId; 3]>,
+    halfedge_edge: Vec<EdgeId>,
     edges: Vec<[VertexId; 2]>,
     edge_offsets: Vec<u32>,
     edge_halfedges: Vec<HalfedgeId>,
@@ -75,254 +77,7 @@ pub struct Connectivity {
     boundary_loops: OnceLock<Vec<BoundaryLoop>>,
 }
 
-/// The half-edges `3 f + k` grouped into buckets by their smaller endpoint
-/// (counting sort), each bucket sorted. An entry packs (larger endpoint,
-/// half-edge, starts at the smaller) into one u64, so that a bucket's runs
-/// of equal larger endpoint are its edges in order and the orientation of a
-/// pair is known with no further lookup. Past 2^31 half-edges the direction
-/// bit does not fit (`packed` is false): it is read from the corners instead.
-struct HalfedgeSort {
-    bucket_offsets: Vec<u32>,
-    sorted: Vec<u64>,
-    packed: bool,
-}
-
-impl HalfedgeSort {
-    fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
-        let nh = faces.len() * 3;
-        // Each half-edge's endpoints as (smaller, larger) and whether it
-        // starts at the smaller, read face by face (twice, rather than kept).
-        let ends = |f: &[u32; 3], k: usize| {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            (a.min(b), a.max(b), a < b)
-        };
-        let packed = nh < 1 << 31;
-        let mut bucket_offsets = vec![0u32; vertex_count + 1];
-        for f in faces {
-            for k in 0..3 {
-                bucket_offsets[ends(f, k).0 as usize + 1] += 1;
-            }
-        }
-        for v in 0..vertex_count {
-            bucket_offsets[v + 1] += bucket_offsets[v];
-        }
-        let mut fill = bucket_offsets.clone();
-        let mut sorted = vec![0u64; nh];
-        for (f, tri) in faces.iter().enumerate() {
-            for k in 0..3 {
-                let (lo, hi, up) = ends(tri, k);
-                let h = (3 * f + k) as u64;
-                let low = if packed { (h << 1) | u64::from(up) } else { h };
-                sorted[fill[lo as usize] as usize] = (u64::from(hi) << 32) | low;
-                fill[lo as usize] += 1;
-            }
-        }
-        for lo in 0..vertex_count {
-            let bucket = &mut sorted[bucket_offsets[lo] as usize..bucket_offsets[lo + 1] as usize];
-            if bucket.len() > 1 {
-                bucket.sort_unstable();
-            }
-        }
-        Self { bucket_offsets, sorted, packed }
-    }
-}
-
-/// The edges of a mesh, numbered as [`Connectivity::edges`] numbers them
-/// (endpoint pairs, smaller first, sorted), and the edge of every half-edge
-/// `3 f + k` (from corner `k` of face `f` to corner `k + 1`), without the
-/// rest of the half-edge structure: for callers that only need the edge
-/// numbering (midpoint subdivision), on any mesh, manifold or not. Cost
-/// O(V + F).
-pub fn number_edges(mesh: &crate::TriMesh) -> (Vec<[u32; 2]>, Vec<u32>) {
-    let vertex_count = mesh.vertex_count();
-    let HalfedgeSort { bucket_offsets, sorted, packed } = HalfedgeSort::new(vertex_count, mesh.faces());
-    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(sorted.len() / 2 + 1);
-    let mut halfedge_edge = vec![0u32; sorted.len()];
-    for lo in 0..vertex_count {
-        let mut last = u32::MAX;
-        for &x in &sorted[bucket_offsets[lo] as usize..bucket_offsets[lo + 1] as usize] {
-            let hi = (x >> 32) as u32;
-            if hi != last {
-                edges.push([lo as u32, hi]);
-                last = hi;
-            }
-            let h = if packed { (x as u32) >> 1 } else { x as u32 };
-            halfedge_edge[h as usize] = (edges.len() - 1) as u32;
-        }
-    }
-    (edges, halfedge_edge)
-}
-
 impl Connectivity {
-    /// Builds the connectivity of `faces` over `vertex_count` vertices. Indices
-    /// must be in range (as [`crate::TriMesh::new`] guarantees). Cost O(V + F).
-    pub fn new(vertex_count: usize, faces: &[[u32; 3]]) -> Self {
-        let nh = faces.len() * 3;
-        let corner_vertex: Vec<VertexId> = faces.iter().flat_map(|f| f.map(VertexId)).collect();
-        let HalfedgeSort { bucket_offsets, sorted, packed } = HalfedgeSort::new(vertex_count, faces);
-        let hi_of = |x: u64| (x >> 32) as u32;
-        let h_of = |x: u64| HalfedgeId(if packed { (x as u32) >> 1 } else { x as u32 });
-        let starts_low = |x: u64, lo: usize| if packed { x & 1 == 1 } else { corner_vertex[h_of(x).idx()].idx() == lo };
-
-        // Runs of equal larger endpoint in a sorted bucket are edges.
-        let mut twin = vec![HalfedgeId::INVALID; nh];
-        let mut face_edges = vec![[EdgeId::INVALID; 3]; faces.len()];
-        let halfedge_edge = face_edges.as_flattened_mut();
-        let mut edges = Vec::with_capacity(nh / 2 + 1);
-        let mut edge_offsets = Vec::with_capacity(nh / 2 + 2);
-        let mut report = NonManifoldReport::default();
-        for lo in 0..vertex_count {
-            let bucket_end = bucket_offsets[lo + 1] as usize;
-            let mut start = bucket_offsets[lo] as usize;
-            while start < bucket_end {
-                let hi = hi_of(sorted[start]);
-                let mut end = start + 1;
-                while end < bucket_end && hi_of(sorted[end]) == hi {
-                    end += 1;
-                }
-                let e = EdgeId::new(edges.len());
-                edges.push([VertexId::new(lo), VertexId(hi)]);
-                edge_offsets.push(start as u32);
-                for &x in &sorted[start..end] {
-                    halfedge_edge[h_of(x).idx()] = e;
-                }
-                match end - start {
-                    1 => {}
-                    2 => {
-                        let (x0, x1) = (sorted[start], sorted[start + 1]);
-                        if starts_low(x0, lo) != starts_low(x1, lo) {
-                            let (h0, h1) = (h_of(x0), h_of(x1));
-                            twin[h0.idx()] = h1;
-                            twin[h1.idx()] = h0;
-                        } else {
-                            report.inconsistent_edges.push(e);
-                        }
-                    }
-                    _ => report.edges.push(e),
-                }
-                start = end;
-            }
-        }
-        drop(bucket_offsets);
-        edge_offsets.push(nh as u32);
-        let edge_halfedges: Vec<HalfedgeId> = sorted.into_iter().map(h_of).collect();
-
-        // Outgoing half-edges per vertex (CSR), each with the half-edge
-        // after it counter-clockwise, twin(prev(h)): read here in face
-        // order (prev(h) is in h's face), so that walking a fan below reads
-        // only its vertex's own slots.
-        let mut vertex_offsets = vec![0u32; vertex_count + 1];
-        for v in &corner_vertex {
-            vertex_offsets[v.idx() + 1] += 1;
-        }
-        for v in 0..vertex_count {
-            vertex_offsets[v + 1] += vertex_offsets[v];
-        }
-        let mut fill = vertex_offsets.clone();
-        let mut rings = vec![(HalfedgeId::INVALID, HalfedgeId::INVALID); nh];
-        for (f, tri) in faces.iter().enumerate() {
-            let face_twins = &twin[3 * f..3 * f + 3];
-            for k in 0..3 {
-                let v = tri[k] as usize;
-                rings[fill[v] as usize] = (HalfedgeId((3 * f + k) as u32), face_twins[(k + 2) % 3]);
-                fill[v] += 1;
-            }
-        }
-        drop(fill);
-
-        let edge_size = |e: EdgeId| edge_offsets[e.idx() + 1] - edge_offsets[e.idx()];
-        let mut nonmanifold_edge_vertex = vec![false; vertex_count];
-        for &e in &report.edges {
-            for v in edges[e.idx()] {
-                nonmanifold_edge_vertex[v.idx()] = true;
-            }
-        }
-        let mut unoriented_vertex = vec![false; vertex_count];
-        for &e in &report.inconsistent_edges {
-            for v in edges[e.idx()] {
-                unoriented_vertex[v.idx()] = true;
-            }
-        }
-
-        // Classify each vertex by its fans and order manifold rings counter-clockwise.
-        let mut vertex_out = vec![HalfedgeId::INVALID; nh];
-        let mut vertex_kind = vec![VertexKind::Isolated; vertex_count];
-        let mut fans_of = UnionFind::new(0);
-        let mut ordered: Vec<HalfedgeId> = Vec::new();
-        let mut index = RingIndex::default();
-        for v in 0..vertex_count {
-            let range = vertex_offsets[v] as usize..vertex_offsets[v + 1] as usize;
-            let ring = &rings[range.clone()];
-            let d = ring.len();
-            if d == 0 {
-                continue;
-            }
-            index.build(ring);
-            // Fast path, almost every vertex: a consistently oriented single
-            // fan, walked counter-clockwise by h -> twin(prev(h)) from its
-            // boundary half-edge (no twin) if it has one.
-            if !nonmanifold_edge_vertex[v] && !unoriented_vertex[v] {
-                if let Some(kind) = walk_fan(ring, &index, &mut ordered) {
-                    vertex_kind[v] = kind;
-                    vertex_out[range].copy_from_slice(&ordered);
-                    continue;
-                }
-            }
-            for (slot, &(h, _)) in vertex_out[range].iter_mut().zip(ring) {
-                *slot = h;
-            }
-            // Otherwise union the incident faces across edges at v that have
-            // exactly two faces, and count the fans.
-            fans_of.reset(d);
-            let mut on_boundary = false;
-            for (i, &(h, _)) in ring.iter().enumerate() {
-                for g in [h, h.prev()] {
-                    let e = halfedge_edge[g.idx()];
-                    match edge_size(e) {
-                        1 => on_boundary = true,
-                        2 => {
-                            let pair = &edge_halfedges[edge_offsets[e.idx()] as usize..][..2];
-                            let other = if pair[0] == g { pair[1] } else { pair[0] };
-                            // The other face's half-edge leaving v.
-                            let out = if corner_vertex[other.idx()].idx() == v { other } else { other.next() };
-                            if let Some(j) = index.position(ring, out) {
-                                fans_of.union(i as u32, j as u32);
-                            }
-                        }
-                        _ => {}
-                    }
-                }
-            }
-            let fans = (0..d as u32).filter(|&i| fans_of.find(i) == i).count();
-            vertex_kind[v] = if fans > 1 || nonmanifold_edge_vertex[v] {
-                if fans > 1 && !nonmanifold_edge_vertex[v] {
-                    report.vertices.push(VertexId::new(v));
-                }
-                VertexKind::NonManifold
-            } else if on_boundary {
-                VertexKind::Boundary
-            } else {
-                VertexKind::Interior
-            };
-        }
-        drop(rings);
-
-        Self {
-            corner_vertex,
-            twin,
-            face_edges,
-            edges,
-            edge_offsets,
-            edge_halfedges,
-            vertex_offsets,
-            vertex_out,
-            vertex_kind,
-            report,
-            components: OnceLock::new(),
-            boundary_loops: OnceLock::new(),
-        }
-    }
-
     /// Number of vertices (referenced or not).
     #[inline]
     pub fn vertex_count(&self) -> usize {
@@ -381,7 +136,7 @@ impl Connectivity {
     /// The undirected edge of a half-edge.
     #[inline]
     pub fn edge(&self, h: HalfedgeId) -> EdgeId {
-        self.face_edges.as_flattened()[h.idx()]
+        self.halfedge_edge[h.idx()]
     }
 
     /// Endpoints of an edge, smaller index first.
@@ -417,13 +172,13 @@ impl Connectivity {
     /// The three edges of a face, edge `k` running from corner `k` to `k + 1`.
     #[inline]
     pub fn face_edges(&self, f: FaceId) -> [EdgeId; 3] {
-        self.face_edges[f.idx()]
+        self.edges_by_face()[f.idx()]
     }
 
     /// [`Connectivity::face_edges`] of every face, indexed by face.
     #[inline]
     pub fn edges_by_face(&self) -> &[[EdgeId; 3]] {
-        &self.face_edges
+        self.halfedge_edge.as_chunks::<3>().0
     }
 
     /// The faces across the three edges of `f` (`None` on the boundary or
@@ -601,83 +356,6 @@ impl Connectivity {
         let c = self.components().count as i64;
         let twice = 2 * c - b - self.euler_characteristic();
         (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u64)
-    }
-}
-
-/// Finds a half-edge's slot in a vertex's ring: by a linear scan in small
-/// rings, by binary search in a sorted copy in large ones (so that a vertex
-/// of valence `d` costs O(d log d), not O(d^2)).
-#[derive(Default)]
-struct RingIndex {
-    /// `(half-edge, slot)` sorted, for rings above [`RingIndex::SCAN`].
-    sorted: Vec<(HalfedgeId, u32)>,
-    /// Every `twin(prev(h))` of the ring sorted, likewise.
-    targets: Vec<HalfedgeId>,
-}
-
-impl RingIndex {
-    /// Rings up to this size are scanned.
-    const SCAN: usize = 16;
-
-    fn build(&mut self, ring: &[(HalfedgeId, HalfedgeId)]) {
-        if ring.len() > Self::SCAN {
-            self.sorted.clear();
-            self.sorted.extend(ring.iter().enumerate().map(|(i, &(h, _))| (h, i as u32)));
-            self.sorted.sort_unstable();
-            self.targets.clear();
-            self.targets.extend(ring.iter().map(|&(_, t)| t));
-            self.targets.sort_unstable();
-        }
-    }
-
-    /// Whether some `twin(prev(g))` of `ring` is `h`.
-    #[inline]
-    fn is_target(&self, ring: &[(HalfedgeId, HalfedgeId)], h: HalfedgeId) -> bool {
-        if ring.len() <= Self::SCAN {
-            ring.iter().any(|&(_, t)| t == h)
-        } else {
-            self.targets.binary_search(&h).is_ok()
-        }
-    }
-
-    /// The slot of `h` in `ring` (the ring [`RingIndex::build`] saw last).
-    #[inline]
-    fn position(&self, ring: &[(HalfedgeId, HalfedgeId)], h: HalfedgeId) -> Option<usize> {
-        if ring.len() <= Self::SCAN {
-            ring.iter().position(|&(g, _)| g == h)
-        } else {
-            let i = self.sorted.binary_search_by_key(&h, |&(g, _)| g).ok()?;
-            Some(self.sorted[i].1 as usize)
-        }
-    }
-}
-
-/// The ring of a vertex none of whose edges is non-manifold or inconsistently
-/// oriented, each outgoing half-edge `h` with `twin(prev(h))`, in
-/// counter-clockwise order into `ordered`, when its faces form one fan:
-/// from the first outgoing half-edge without twin (an open fan; on such a
-/// vertex, the one no `twin(prev(g))` of the ring names) or from `ring[0]`
-/// (a closed fan), rotating h -> twin(prev(h)). The vertex's kind, or `None`
-/// when the walk does not visit the whole ring (several fans).
-fn walk_fan(ring: &[(HalfedgeId, HalfedgeId)], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) -> Option<VertexKind> {
-    let open = ring.iter().position(|&(h, _)| !index.is_target(ring, h));
-    let first = open.unwrap_or(0);
-    ordered.clear();
-    let mut i = first;
-    loop {
-        ordered.push(ring[i].0);
-        let t = ring[i].1;
-        let whole = ordered.len() == ring.len();
-        if !t.is_valid() {
-            return (open.is_some() && whole).then_some(VertexKind::Boundary);
-        }
-        if t == ring[first].0 {
-            return (open.is_none() && whole).then_some(VertexKind::Interior);
-        }
-        if whole {
-            return None;
-        }
-        i = index.position(ring, t)?;
     }
 }
 
@@ -877,6 +555,53 @@ mod tests {
                 }
             }
             assert_eq!(c.non_manifold_report(), &report);
+        }
+    }
+
+    /// Everything a connectivity answers, for comparing two builds.
+    fn snapshot(c: &Connectivity) -> impl PartialEq + std::fmt::Debug {
+        let halfedges = (0..c.halfedge_count() as u32).map(HalfedgeId);
+        let vertices = (0..c.vertex_count()).map(VertexId::new);
+        (
+            c.edges().to_vec(),
+            (0..c.edge_count()).map(|e| c.edge_halfedges(EdgeId::new(e)).to_vec()).collect::<Vec<_>>(),
+            halfedges.map(|h| (c.twin(h), c.edge(h))).collect::<Vec<_>>(),
+            vertices.map(|v| (c.outgoing(v).to_vec(), c.vertex_kind(v))).collect::<Vec<_>>(),
+            c.non_manifold_report().clone(),
+        )
+    }
+
+    /// The build is the same on 1, 2, 3 and 8 threads, past the sizes
+    /// where its counting sorts run in several runs and its fan walks in
+    /// several tasks: a 40,962-vertex sphere renumbered at random (so that
+    /// runs and rows meet every part of the arrays), with faces flipped,
+    /// repeated and glued at a vertex.
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn the_build_does_not_depend_on_the_thread_count() {
+        let m = crate::shapes::icosphere(6).unwrap();
+        let n = m.vertex_count();
+        let mut rng = crate::random::SplitMix64::new(17);
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            order.swap(i, rng.below(i + 1));
+        }
+        let mut faces: Vec<[u32; 3]> = m.faces().iter().map(|f| f.map(|v| order[v as usize])).collect();
+        for _ in 0..50 {
+            let f = rng.below(faces.len());
+            match rng.below(3) {
+                0 => faces[f].swap(1, 2),
+                1 => faces.push(faces[f]),
+                _ => faces.push([faces[f][0], n as u32, n as u32 + 1]),
+            }
+        }
+        let build = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            snapshot(&pool.install(|| Connectivity::new(n + 2, &faces)))
+        };
+        let one = build(1);
+        for threads in [2, 3, 8] {
+            assert!(build(threads) == one, "{threads} threads");
         }
     }
 
