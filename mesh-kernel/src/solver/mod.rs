@@ -94,9 +94,14 @@ pub const SUPERNODAL_FROM: usize = 2000;
 /// 1.35 M, factored in the same time).
 pub const DISSECTION_FROM: usize = 20_000;
 
-/// Unknowns from which factorizations run on faer's global thread pool: on
-/// 2-core machines threads made 8k-unknown factorizations 1.5x slower.
-pub const PARALLEL_FROM: usize = 100_000;
+/// Unknowns from which factorizations run on faer's global thread pool.
+/// faer's supernodal factorization walks the supernodes in order and
+/// parallelizes inside their dense blocks, which are small on surface
+/// meshes: on 2-core machines two threads made an 8k-unknown factorization
+/// 1.5x slower, the heat method's precomputation at 470k vertices 1.3x
+/// slower (3.9-4.1 s against 3.0-3.2 s) and at 1.9M vertices no faster
+/// (41-42 s either way).
+pub const PARALLEL_FROM: usize = 1_000_000;
 
 /// faer's global parallelism for large systems, one thread for small ones.
 fn parallelism(n: usize) -> Par {
