@@ -67,8 +67,10 @@ impl GaussianCurvature {
 pub fn gaussian_curvature(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCurvature> {
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
     let mut k = angle_defect(&mesh, options)?;
-    k.pointwise.iter_mut().for_each(|x| *x = *x / unit / unit);
-    k.area.iter_mut().for_each(|x| *x = *x * unit * unit);
+    if unit != 1.0 {
+        k.pointwise.iter_mut().for_each(|x| *x = *x / unit / unit);
+        k.area.iter_mut().for_each(|x| *x = *x * unit * unit);
+    }
     Ok(k)
 }
 

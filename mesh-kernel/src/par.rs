@@ -186,25 +186,24 @@ fn atomic_slots64(len: usize) -> Vec<AtomicU64> {
     (0..len).map(|_| AtomicU64::new(0)).collect()
 }
 
-/// Faces per chunk of a [`scatter`] (the chunk count depends on the face
-/// count only, so that the order of the sums does too).
-pub const SCATTER_CHUNK: usize = 1 << 15;
+/// Fewest faces per part of a [`scatter`] on several threads.
+pub const SCATTER_CHUNK: usize = 1 << 16;
 
 /// Adds per-corner values of every face into per-vertex accumulators: for
 /// face `f` with corners `[a, b, c]` and `values(f) = [x, y, z]`, it calls
 /// `add(&mut out[a], x)`, then `b` and `c` likewise; `out` starts as `n`
 /// copies of `init`. Corners must be below `n`.
 ///
-/// Two cores split the work without changing the result: the faces form
-/// chunks of [`SCATTER_CHUNK`] faces, each the sole writer of a range of
-/// vertices, which it adds to in face order. A value for a vertex outside
-/// the range is set aside, and what was set aside is added afterwards,
-/// chunk after chunk. The vertex ranges start at the first corner of each
-/// chunk's first face where those increase, so on meshes whose faces follow
-/// their vertices (after [`crate::reorder::Reordering`]) little is set aside.
-/// On meshes where a sample of the faces shows more than one corner in
-/// eight outside its range, one loop adds everything in face order.
-/// Either way the order depends on the mesh only.
+/// Every vertex receives its values in face order, whatever the thread
+/// count, so the sums are identical on any number of threads. Several
+/// threads split the faces into consecutive parts; a vertex belongs to the
+/// first part that has it as a corner, which adds to it directly, while
+/// later parts set their values for it aside, to be added part after part
+/// at the end. On meshes whose consecutive faces lie side by side (scans,
+/// subdivided meshes, any mesh after [`crate::reorder::Reordering`]) few
+/// values are set aside; where a sample of the faces shows more than one
+/// corner in eight to set aside (faces in random order), one loop adds
+/// everything.
 pub fn scatter<A, V, I>(
     n: usize,
     faces: &[[I; 3]],
@@ -284,42 +283,110 @@ where
     I: Copy + Sync,
     u32: From<I>,
 {
-    let mut out = vec![init; n];
-    let chunks = faces.len().div_ceil(SCATTER_CHUNK);
-    let bounds = if chunks > 1 { vertex_ranges(n, faces, chunks) } else { Vec::new() };
-    if chunks <= 1 || !mostly_owned(faces, &bounds) {
+    // Four parts per thread, so that threads busy elsewhere (the other side
+    // of a `join`) leave theirs to the others; one thread runs one loop.
+    let threads = threads();
+    let parts = if threads < 2 { 1 } else { (4 * threads).min(MAX_PARTS).min(faces.len() / SCATTER_CHUNK) };
+    let mut out = if parts >= 2 { map(n, |_| init.clone()) } else { vec![init; n] };
+    // Part boundaries at whole batches, so that batches do not depend on them.
+    let step = B.max(1);
+    let bounds: Vec<usize> =
+        (0..=parts).map(|k| (k * faces.len() / parts.max(1)).next_multiple_of(step).min(faces.len())).collect();
+    let seen = if parts >= 2 { seen_before(n, faces, &bounds) } else { Vec::new() };
+    if parts < 2 || !mostly_owned(faces, &bounds, &seen) {
         each_corner::<V, I, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
         return out;
     }
-    let mut owned = Vec::with_capacity(chunks);
-    let mut rest = out.as_mut_slice();
-    for c in 0..chunks {
-        let (head, tail) = rest.split_at_mut(bounds[c + 1] - bounds[c]);
-        owned.push((c, head));
-        rest = tail;
-    }
-    let chunk = |(c, range): (usize, &mut [A])| {
-        let (lo, first) = (bounds[c], c * SCATTER_CHUNK);
-        let mut aside = Vec::with_capacity(SCATTER_CHUNK / 2);
-        each_corner::<V, I, B>(faces, values, first, faces.len().min(first + SCATTER_CHUNK), &mut |v, x| match range
-            .get_mut((v as usize).wrapping_sub(lo))
-        {
-            Some(slot) => add(slot, x),
-            None => aside.push((v, x)),
+    let slots = DisjointSlots(out.as_mut_ptr(), n);
+    let aside: Vec<Vec<(u32, V)>> = map_heavy(parts, |k| {
+        let (seen, slots) = (&seen[k], &slots);
+        let mut aside = Vec::new();
+        each_corner::<V, I, B>(faces, values, bounds[k], bounds[k + 1], &mut |v, x| {
+            if has(seen, v) {
+                aside.push((v, x));
+            } else {
+                // SAFETY: vertex `v` is written by one part only: the
+                // first with `v` as a corner (the others have it in
+                // `seen`); `out` outlives the parts, which end here.
+                add(unsafe { slots.at(v as usize) }, x)
+            }
         });
         aside
-    };
-    #[cfg(feature = "rayon")]
-    let aside: Vec<Vec<(u32, V)>> = {
-        use rayon::prelude::*;
-        owned.into_par_iter().with_max_len(1).map(chunk).collect()
-    };
-    #[cfg(not(feature = "rayon"))]
-    let aside: Vec<Vec<(u32, V)>> = owned.into_iter().map(chunk).collect();
+    });
     for (v, x) in aside.into_iter().flatten() {
         add(&mut out[v as usize], x);
     }
     out
+}
+
+/// Most parts of a [`scatter`]: each costs a bit per vertex, and sets aside
+/// the corners it shares with the parts before it.
+const MAX_PARTS: usize = 16;
+
+/// The accumulators of a [`scatter`] (start and length), written by several
+/// parts at once, each vertex by one part.
+struct DisjointSlots<A>(*mut A, usize);
+
+// SAFETY: the parts write distinct elements (see `scatter_with`), and `A`
+// may move between threads.
+unsafe impl<A: Send> Sync for DisjointSlots<A> {}
+
+impl<A> DisjointSlots<A> {
+    /// The accumulator of vertex `i`; panics past the end, like an index.
+    ///
+    /// # Safety
+    /// No other reference to element `i` is live.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn at(&self, i: usize) -> &mut A {
+        assert!(i < self.1, "corner {i} of a scatter over {} vertices", self.1);
+        // SAFETY: in bounds, and unaliased as the caller promises.
+        unsafe { &mut *self.0.add(i) }
+    }
+}
+
+/// For each part `k` of a [`scatter`] (faces `bounds[k]..bounds[k + 1]`),
+/// the vertices that are corners of the faces before it, as bits; each
+/// part but the last is read in two pieces, side by side.
+fn seen_before<I: Copy + Sync>(n: usize, faces: &[[I; 3]], bounds: &[usize]) -> Vec<Vec<u64>>
+where
+    u32: From<I>,
+{
+    let words = n.div_ceil(64);
+    let pieces = 2 * (bounds.len() - 2);
+    let piece = |p: usize| {
+        let (lo, hi) = (bounds[p / 2], bounds[p / 2 + 1]);
+        let mid = lo + (hi - lo) / 2;
+        if p.is_multiple_of(2) {
+            lo..mid
+        } else {
+            mid..hi
+        }
+    };
+    let touched = map_heavy(pieces, |p| {
+        let mut bits = vec![0u64; words];
+        for tri in &faces[piece(p)] {
+            for &v in tri {
+                let v = u32::from(v) as usize;
+                bits[v / 64] |= 1 << (v % 64);
+            }
+        }
+        bits
+    });
+    let mut seen = vec![vec![0u64; words]];
+    for pair in touched.chunks(2) {
+        let mut next = seen[seen.len() - 1].clone();
+        for bits in pair {
+            next.iter_mut().zip(bits).for_each(|(a, b)| *a |= b);
+        }
+        seen.push(next);
+    }
+    seen
+}
+
+/// Whether bit `v` is set.
+#[inline(always)]
+fn has(bits: &[u64], v: u32) -> bool {
+    bits[v as usize / 64] >> (v % 64) & 1 == 1
 }
 
 /// Faces `lo..hi` of a [`scatter_batched`], batch by batch, each corner's
@@ -344,39 +411,22 @@ fn each_corner<V: Copy, I: Copy, const B: usize>(
     }
 }
 
-/// Whether, judged from every 61st face, at most one corner in eight falls
-/// outside its chunk's vertex range: otherwise setting corners aside costs
-/// more than a second thread gains (meshes whose faces do not follow their
-/// vertices), and [`scatter`] runs one loop in face order.
-fn mostly_owned<I: Copy>(faces: &[[I; 3]], bounds: &[usize]) -> bool
+/// Whether, judged from every 61st face, at most one corner in eight
+/// would be set aside: otherwise setting corners aside costs more than
+/// more threads gain (faces in random order), and [`scatter`] runs one
+/// loop.
+fn mostly_owned<I: Copy>(faces: &[[I; 3]], bounds: &[usize], seen: &[Vec<u64>]) -> bool
 where
     u32: From<I>,
 {
-    let (mut seen, mut outside) = (0usize, 0usize);
-    for f in (0..faces.len()).step_by(61) {
-        let c = f / SCATTER_CHUNK;
-        for &v in &faces[f] {
-            seen += 1;
-            outside += usize::from(!(bounds[c]..bounds[c + 1]).contains(&(u32::from(v) as usize)));
+    let (mut corners, mut aside) = (0usize, 0usize);
+    for k in 0..seen.len() {
+        for tri in faces[bounds[k]..bounds[k + 1]].iter().step_by(61) {
+            corners += 3;
+            aside += tri.iter().filter(|&&v| has(&seen[k], u32::from(v))).count();
         }
     }
-    8 * outside <= seen
-}
-
-/// Start of each chunk's vertex range (and `n` at the end): the first
-/// corners of the chunks' first faces where they increase, equal ranges
-/// otherwise.
-fn vertex_ranges<I: Copy>(n: usize, faces: &[[I; 3]], chunks: usize) -> Vec<usize>
-where
-    u32: From<I>,
-{
-    let mut bounds: Vec<usize> = (0..chunks).map(|c| u32::from(faces[c * SCATTER_CHUNK][0]) as usize).collect();
-    bounds[0] = 0;
-    bounds.push(n);
-    if !bounds.windows(2).all(|w| w[0] < w[1]) {
-        bounds = (0..=chunks).map(|c| c * n / chunks).collect();
-    }
-    bounds
+    8 * aside <= corners
 }
 
 /// Like [`map`] for items that each cost a millisecond or more (a march, a
@@ -469,8 +519,8 @@ mod tests {
         // In order, a few faces out of place (some corners set aside), shuffled.
         for (i, faces) in [strip(m), shuffled(strip(m), 3, 2000), shuffled(strip(m), 3, 2 * m)].into_iter().enumerate()
         {
-            let bounds = vertex_ranges(m + 2, &faces, (2 * m).div_ceil(SCATTER_CHUNK));
-            assert_eq!(mostly_owned(&faces, &bounds), i < 2, "case {i}");
+            let bounds = [0, m, 2 * m];
+            assert_eq!(mostly_owned(&faces, &bounds, &seen_before(m + 2, &faces, &bounds)), i < 2, "case {i}");
             let n = faces.len() / 2 + 2;
             let run = |threads: usize| {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
@@ -482,6 +532,20 @@ mod tests {
             for threads in [2, 3, 8] {
                 assert!(one.iter().zip(run(threads)).all(|(a, b)| a.to_bits() == b.to_bits()), "{threads} threads");
             }
+        }
+    }
+
+    /// A corner past the end is refused by a panic, as an index would be,
+    /// on one thread and on several (where parts write through pointers).
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn scatter_panics_on_a_corner_past_the_end() {
+        let m = 3 * SCATTER_CHUNK;
+        let faces = strip(m);
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let run = || pool.install(|| scatter(m + 1, &faces, 0.0, |_| [1.0; 3], |a, x| *a += x));
+            assert!(std::panic::catch_unwind(std::panic::AssertUnwindSafe(run)).is_err(), "{threads} threads");
         }
     }
 

@@ -115,9 +115,8 @@ fn face_halfedge_cotans(mesh: &TriMesh, f: usize) -> [f64; 3] {
 /// (eq. 2.15 up to the factor 1/2 that makes it the FEM stiffness), summed
 /// over however many faces the edge has (one on the boundary). Negative for
 /// edges opposite obtuse angles (chapter section 2.2.2). O(F), in one pass
-/// over the faces, adding into the edges with [`par::scatter`] (two
-/// threads on meshes whose faces follow their vertices, in an order that
-/// depends on the mesh only).
+/// over the faces, adding into the edges with [`par::scatter`] (several
+/// threads, each edge's sum in face order on any number of them).
 pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
     par::scatter(
