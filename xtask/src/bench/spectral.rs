@@ -1,8 +1,10 @@
 //! mesh-spectral operations, named as in peer_bench.py where they match:
 //! `eigs20` and `eigs200` (the 20 and 200 smallest pairs of the cotangent
 //! Laplacian with the mixed Voronoi mass, matrices assembled outside the
-//! clock, like scipy's `eigsh` there). With a basis of 20 harmonics: `harmonics_forward_20` (`Phi^T M f`
-//! of the three coordinates), `harmonics_inverse_20` and `compress_20`
+//! clock, like scipy's `eigsh` there; `eigs200` takes about 2 minutes a
+//! run at 470k vertices, `--skip eigs200` leaves it out). With a basis of
+//! 20 harmonics: `harmonics_forward_20` (`Phi^T M f` of the three
+//! coordinates), `harmonics_inverse_20` and `compress_20`
 //! (reconstruction from 20 coefficients with its error). The basis is
 //! computed on the first run of those three (so the median of several runs
 //! leaves it out) and not at all when they are filtered away.
