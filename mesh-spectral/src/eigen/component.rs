@@ -10,7 +10,7 @@ use std::time::Instant;
 use faer::{Mat, MatRef};
 
 use super::krylov::{self, BlockOperator, Config, Verdict};
-use super::problem::Component;
+use super::problem::{Component, Reordered};
 use super::quality::{final_rayleigh_ritz, quality, rayleigh_quotients, Quality, Stiffness};
 use super::shift_invert::ShiftInvert;
 use super::shift_invert::{HALF_LANES, LANES};
@@ -181,7 +181,6 @@ fn krylov_component(
     options: &EigenOptions,
 ) -> Result<Partial> {
     let dim = c.massive - usize::from(deflate);
-    let st = Stiffness::new(&c.laplacian);
     let mut stats = EigenStats::empty(EigenSolver::BlockKrylovSchur);
     let (mut sizes, mut restarts) = (sizes, options.max_restarts);
     let mut shift = options.shift.unwrap_or(-scale);
@@ -204,7 +203,8 @@ fn krylov_component(
         stats.attempts = attempt;
         let y0 = deflate.then(|| null_vector(si, c));
         let deflated = Deflated { op: si, y0 };
-        let run = Run { c, st: &st, op: &deflated, scale, want, sizes, restarts, options };
+        let ordered = Reordered::new(c, si.order())?;
+        let run = Run { ordered: &ordered, op: &deflated, scale, want, sizes, restarts, options };
         match run.go(&mut stats) {
             Ok(partial) if partial.quality.misses() == 0 => {
                 let cluster = largest_cluster(&partial.values, scale);
@@ -294,8 +294,9 @@ fn null_vector(op: &ShiftInvert, c: &Component) -> Vec<f64> {
 
 /// One block Krylov-Schur run and its final Rayleigh-Ritz.
 struct Run<'a> {
-    c: &'a Component,
-    st: &'a Stiffness<'a>,
+    /// The component in the factor's order, the order of every vector
+    /// until the result.
+    ordered: &'a Reordered<'a>,
     op: &'a Deflated<'a>,
     scale: f64,
     want: usize,
@@ -308,7 +309,8 @@ impl Run<'_> {
     /// Adds its counts and timings to `stats`.
     fn go(&self, stats: &mut EigenStats) -> Result<Partial> {
         let t = Instant::now();
-        let (c, tol, scale) = (self.c, self.options.tolerance, self.scale);
+        let (tol, scale, mass) = (self.options.tolerance, self.scale, &self.ordered.mass);
+        let st = Stiffness::new(&self.ordered.laplacian);
         let cfg = Config {
             want: self.want,
             nev: self.sizes.nev.min(self.sizes.basis - 2 * self.sizes.block),
@@ -321,9 +323,9 @@ impl Run<'_> {
         let si = self.op.op;
         let outcome = krylov::solve(self.op, &cfg, |theta, y, u| {
             let x = si.vectors(y, u, theta)?;
-            let p = self.st.apply(x.as_ref());
-            let values = rayleigh_quotients(&p.lx, &c.mass, x.as_ref());
-            let q = quality(&p, &c.mass, &values, x.as_ref(), scale, tol);
+            let p = st.apply(x.as_ref());
+            let values = rayleigh_quotients(&p.lx, mass, x.as_ref());
+            let q = quality(&p, mass, &values, x.as_ref(), scale, tol);
             Ok(Verdict { ratios: q.ratios(), accepted: (x, p) })
         });
         stats.iterate_seconds += t.elapsed().as_secs_f64();
@@ -344,8 +346,9 @@ impl Run<'_> {
         stats.orthogonalize_seconds += outcome.timings.orthogonalize;
         let t = Instant::now();
         let (x, products) = outcome.accepted;
-        let (values, vectors, products) = final_rayleigh_ritz(&c.mass, x, products)?;
-        let quality = quality(&products, &c.mass, &values, vectors.as_ref(), scale, tol);
+        let (values, vectors, products) = final_rayleigh_ritz(mass, x, products)?;
+        let quality = quality(&products, mass, &values, vectors.as_ref(), scale, tol);
+        let vectors = self.ordered.to_component(vectors.as_ref());
         stats.finalize_seconds += t.elapsed().as_secs_f64();
         Ok(Partial { values, vectors, quality, stats: stats.clone() })
     }

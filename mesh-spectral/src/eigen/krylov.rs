@@ -96,13 +96,14 @@ pub(crate) struct Outcome<T> {
 
 /// Runs block Krylov-Schur on `op` until the `want` largest pairs pass the
 /// estimate and then `accept`, which gets the Ritz values, Ritz vectors `y`
-/// and purified vectors `u = B y / theta` (first from the Krylov relation;
-/// if they fail, from one more application of `B`: over many restarts the
-/// relation drifts by rounding and limits the accuracy of the former).
+/// and purified vectors `u = B y / theta`, which it owns (first from the
+/// Krylov relation; if they fail, from one more application of `B`: over
+/// many restarts the relation drifts by rounding and limits the accuracy of
+/// the former).
 pub(crate) fn solve<O: BlockOperator, T>(
     op: &O,
     cfg: &Config,
-    mut accept: impl FnMut(&[f64], MatRef<'_, f64>, MatRef<'_, f64>) -> Result<Verdict<T>>,
+    mut accept: impl FnMut(&[f64], MatRef<'_, f64>, Mat<f64>) -> Result<Verdict<T>>,
 ) -> Result<Outcome<T>> {
     let n = op.dim();
     let (b, m, want) = (cfg.block, cfg.basis, cfg.want);
@@ -154,7 +155,7 @@ pub(crate) fn solve<O: BlockOperator, T>(
                 } else {
                     ks.purified(&ritz, y.as_ref(), want)
                 };
-                let verdict = accept(&ritz.theta[..want], y.as_ref(), u.as_ref())?;
+                let verdict = accept(&ritz.theta[..want], y.as_ref(), u)?;
                 let ratio = verdict.ratios.iter().copied().fold(0.0, f64::max);
                 if ratio <= 1.0 {
                     times.other += clock.elapsed().as_secs_f64();

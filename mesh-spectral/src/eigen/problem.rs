@@ -11,6 +11,7 @@
 //! eigenvector. Zero-mass vertices inside a massive component stay: they are
 //! constraints `(L x)_i = 0`, solved exactly by the harmonic extension.
 
+use faer::{Mat, MatRef};
 use sprs::CsMat;
 
 use crate::error::{Result, SpectralError};
@@ -28,6 +29,81 @@ pub(crate) struct Component {
     pub massive: usize,
     /// Total mass (the area of the piece for a mesh).
     pub area: f64,
+}
+
+/// A component's pencil with its rows and columns in another order, a
+/// factor's: `laplacian = P L P^T`, `mass[i]` that of row `order[i]`. The
+/// Krylov vectors live in the factor's order; the acceptance tests and the
+/// final Rayleigh-Ritz work there too, and the result is put back in the
+/// component's order once ([`Self::to_component`]). At 470k vertices and
+/// 200 vectors, turning the Ritz vectors into eigenvectors went from 3.5 s
+/// of scattered stores to 0.15 s in place, and the one reordering at the
+/// end takes 0.85 s.
+pub(crate) struct Reordered<'a> {
+    pub order: &'a [usize],
+    pub laplacian: CsMat<f64>,
+    pub mass: Vec<f64>,
+}
+
+impl<'a> Reordered<'a> {
+    /// `c` in `order` (`order[i]` is the component row that comes i-th; a
+    /// permutation of the component's rows). O(nnz log d).
+    ///
+    /// # Errors
+    /// `SpectralError::Dimension` when `order` is not a permutation of the
+    /// component's rows.
+    pub fn new(c: &Component, order: &'a [usize]) -> Result<Self> {
+        let n = c.vertices.len();
+        let mut position = vec![usize::MAX; n];
+        for (i, &row) in order.iter().enumerate() {
+            match position.get_mut(row) {
+                Some(p) if *p == usize::MAX => *p = i,
+                _ => return Err(SpectralError::Dimension(format!("order is not a permutation of {n} rows"))),
+            }
+        }
+        if order.len() != n {
+            return Err(SpectralError::Dimension(format!("order has {} rows, the component {n}", order.len())));
+        }
+        let mut indptr = Vec::with_capacity(n + 1);
+        let (mut indices, mut data) = (Vec::with_capacity(c.laplacian.nnz()), Vec::with_capacity(c.laplacian.nnz()));
+        let mut row: Vec<(usize, f64)> = Vec::new();
+        indptr.push(0);
+        for &old in order {
+            row.clear();
+            if let Some(lane) = c.laplacian.outer_view(old) {
+                row.extend(lane.iter().map(|(j, &v)| (position[j], v)));
+            }
+            row.sort_unstable_by_key(|e| e.0);
+            indices.extend(row.iter().map(|e| e.0));
+            data.extend(row.iter().map(|e| e.1));
+            indptr.push(indices.len());
+        }
+        let laplacian = CsMat::try_new((n, n), indptr, indices, data)
+            .map_err(|e| SpectralError::Dimension(format!("reordered L: {}", e.3)))?;
+        let mass = order.iter().map(|&row| c.mass[row]).collect();
+        Ok(Self { order, laplacian, mass })
+    }
+
+    /// `x` (rows in this order) with its rows back in the component's
+    /// order, by groups of 8 columns through a row-major buffer: one
+    /// scattered cache line per row and group instead of one per value.
+    pub fn to_component(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+        const GROUP: usize = 8;
+        let (n, k) = (x.nrows(), x.ncols());
+        let mut out = Mat::zeros(n, k);
+        let mut rows = vec![[0.0; GROUP]; n];
+        for g in (0..k).step_by(GROUP) {
+            let width = GROUP.min(k - g);
+            let cols: Vec<_> = (g..g + width).map(|j| x.col(j)).collect();
+            for (i, &row) in self.order.iter().enumerate() {
+                for (c, col) in cols.iter().enumerate() {
+                    rows[row][c] = col[i];
+                }
+            }
+            super::quality::from_rows(&rows, out.as_mut().subcols_mut(g, width));
+        }
+        out
+    }
 }
 
 /// The checked and split problem.
@@ -223,6 +299,27 @@ mod tests {
 
     fn path(n: usize, edges: &[(usize, usize)]) -> CsMat<f64> {
         graph_laplacian(n, edges)
+    }
+
+    #[test]
+    fn reordering_permutes_the_pencil_and_puts_vectors_back() {
+        let l = graph_laplacian(5, &[(0, 1), (1, 2), (2, 3), (3, 4), (0, 4), (1, 3)]);
+        let mass = vec![1.0, 2.0, 3.0, 4.0, 5.0];
+        let c = Component { vertices: (0..5).collect(), laplacian: l.clone(), mass, massive: 5, area: 15.0 };
+        let order = [3, 0, 4, 1, 2];
+        let r = Reordered::new(&c, &order).unwrap();
+        for i in 0..5 {
+            for j in 0..5 {
+                assert_eq!(r.laplacian.get(i, j), l.get(order[i], order[j]), "({i}, {j})");
+            }
+            assert_eq!(r.mass[i], c.mass[order[i]]);
+        }
+        // 11 columns: a full group of 8 and a partial one.
+        let x = Mat::from_fn(5, 11, |i, j| (order[i] * 100 + j) as f64);
+        assert!(r.to_component(x.as_ref()) == Mat::from_fn(5, 11, |i, j| (i * 100 + j) as f64));
+        assert!(Reordered::new(&c, &[0, 0, 1, 2, 3]).is_err());
+        assert!(Reordered::new(&c, &[0, 1, 2]).is_err());
+        assert!(Reordered::new(&c, &[0, 1, 2, 3, 9]).is_err());
     }
 
     #[test]

@@ -22,6 +22,7 @@ use mesh_kernel::solver::{Cholesky, FillOrdering};
 use mesh_kernel::MeshError;
 
 use super::problem::Component;
+use super::tall::column;
 use crate::error::{Result, SpectralError};
 
 /// Right-hand sides per block solve: the width of one 512-bit vector of
@@ -128,12 +129,14 @@ impl ShiftInvert {
         let mut groups = self.take_scratch(q.ncols());
         self.gather(q, |_| 1.0, &mut groups);
         self.solve_groups(q.ncols(), &mut groups)?;
+        // Row after row, the group's columns side by side (a pass per
+        // column would read every lane `width` times).
         for ((first, width), lanes) in group_widths(q.ncols()).zip(&groups) {
-            for k in 0..width.min(q.ncols() - first) {
-                let out = w.col_as_slice_mut(first + k);
-                for (row, coord) in lanes.chunks_exact(width).zip(&self.coords) {
-                    if let Some((i, s)) = *coord {
-                        out[i] = s * row[k];
+            let mut outs: Vec<_> = w.as_mut().subcols_mut(first, width.min(q.ncols() - first)).col_iter_mut().collect();
+            for (row, coord) in lanes.chunks_exact(width).zip(&self.coords) {
+                if let Some((i, s)) = *coord {
+                    for (out, &v) in outs.iter_mut().zip(row) {
+                        out[i] = s * v;
                     }
                 }
             }
@@ -200,60 +203,57 @@ impl ShiftInvert {
         }
     }
 
-    /// Eigenvectors of the pencil on the whole component (component row
-    /// order) from Ritz vectors `y` of `B`, their purified form
-    /// `u = B y / theta` and values `theta`: `x = K^-1 M^1/2 y / theta`,
-    /// which is `M^-1/2 u` on massive vertices and the harmonic extension on
-    /// massless ones (one extra block solve, only when such vertices exist).
+    /// Eigenvectors of the pencil on the whole component, rows in the
+    /// factor's order ([`Self::order`]), from Ritz vectors `y` of `B`, their
+    /// purified form `u = B y / theta` and values `theta`:
+    /// `x = K^-1 M^1/2 y / theta`, which is `M^-1/2 u` on massive vertices
+    /// and the harmonic extension on massless ones (one extra block solve,
+    /// only when such vertices exist). In the factor's order the former is
+    /// done in place on `u` and the latter is a sequential sweep.
     ///
     /// # Errors
     /// `SpectralError::Dense` when a Ritz value is zero or not finite (cannot be inverted).
-    pub fn vectors(&self, y: MatRef<'_, f64>, u: MatRef<'_, f64>, theta: &[f64]) -> Result<Mat<f64>> {
+    pub fn vectors(&self, y: MatRef<'_, f64>, mut u: Mat<f64>, theta: &[f64]) -> Result<Mat<f64>> {
         let n = self.coords.len();
-        let mut x = Mat::zeros(n, u.ncols());
         if self.rows.len() == n {
-            for (pi, coord) in self.coords.iter().enumerate() {
-                if let Some((i, s)) = *coord {
-                    let row = self.rows[i];
-                    debug_assert_eq!(row, self.chol.order()[pi]);
-                    for j in 0..u.ncols() {
-                        x[(row, j)] = u[(i, j)] / s;
+            // Every unknown has mass: coordinate i of `y` is unknown i.
+            for j in 0..u.ncols() {
+                for (o, coord) in u.col_as_slice_mut(j).iter_mut().zip(&self.coords) {
+                    if let Some((_, s)) = *coord {
+                        *o /= s;
                     }
                 }
             }
-            return Ok(x);
+            return Ok(u);
         }
+        let mut x = Mat::zeros(n, u.ncols());
         if let Some(t) = theta.iter().find(|t| !(t.is_finite() && **t != 0.0)) {
             return Err(SpectralError::Dense(format!("Ritz value {t} cannot be inverted")));
         }
         let mut groups = self.take_scratch(y.ncols());
         self.gather(y, |j| 1.0 / theta[j], &mut groups);
         self.solve_groups(y.ncols(), &mut groups)?;
-        let perm = self.chol.order();
         for ((first, width), lanes) in group_widths(y.ncols()).zip(&groups) {
-            for k in 0..width.min(y.ncols() - first) {
-                let out = x.col_as_slice_mut(first + k);
-                for (lane, &row) in lanes.chunks_exact(width).zip(perm) {
-                    out[row] = lane[k];
+            let mut outs: Vec<_> = x.as_mut().subcols_mut(first, width.min(y.ncols() - first)).col_iter_mut().collect();
+            for (i, row) in lanes.chunks_exact(width).enumerate() {
+                for (out, &v) in outs.iter_mut().zip(row) {
+                    out[i] = v;
                 }
             }
         }
         self.put_scratch(groups);
         Ok(x)
     }
+
+    /// The factor's order: the component row of each of its unknowns.
+    pub fn order(&self) -> &[usize] {
+        self.chol.order()
+    }
 }
 
 /// `L - shift M` of a component.
 fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
     &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect())
-}
-
-/// Column j of `q` as a slice (copied only if it is not contiguous).
-fn column<'a>(q: MatRef<'a, f64>, j: usize) -> Cow<'a, [f64]> {
-    match q.col(j).try_as_col_major() {
-        Some(c) => Cow::Borrowed(c.as_slice()),
-        None => Cow::Owned(q.col(j).iter().copied().collect()),
-    }
 }
 
 #[cfg(test)]
