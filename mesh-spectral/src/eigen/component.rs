@@ -322,8 +322,8 @@ impl Run<'_> {
         };
         let si = self.op.op;
         let outcome = krylov::solve(self.op, &cfg, |theta, y, u| {
-            let x = si.vectors(y, u, theta)?;
-            let p = st.apply(x.as_ref());
+            let x = si.vectors(y.as_ref(), u, theta)?;
+            let p = st.apply_into(x.as_ref(), y);
             let values = rayleigh_quotients(&p.lx, mass, x.as_ref());
             let q = quality(&p, mass, &values, x.as_ref(), scale, tol);
             Ok(Verdict { ratios: q.ratios(), accepted: (x, p) })
@@ -348,7 +348,7 @@ impl Run<'_> {
         let (x, products) = outcome.accepted;
         let (values, vectors, products) = final_rayleigh_ritz(mass, x, products)?;
         let quality = quality(&products, mass, &values, vectors.as_ref(), scale, tol);
-        let vectors = self.ordered.to_component(vectors.as_ref());
+        let vectors = self.ordered.to_component(vectors);
         stats.finalize_seconds += t.elapsed().as_secs_f64();
         Ok(Partial { values, vectors, quality, stats: stats.clone() })
     }

@@ -18,7 +18,14 @@
 //! - **Rayleigh-Ritz**: `H = S Theta S^T` (dense self-adjoint eigen); the
 //!   Ritz pair `(theta_j, V s_j)` has residual norm exactly `||G s_j||`;
 //! - **restart**: keep the `p` largest Ritz pairs: `V <- V S_p`,
-//!   `H <- Theta_p`, `G <- G S_p`, and expand again from `Q`.
+//!   `H <- Theta_p`, `G <- G S_p`, and expand again from `Q`;
+//! - **lock** (Stewart 2001, section 3): a wanted pair whose estimate
+//!   `||G s_j||` is a hundredth of the tolerance gets its column of `G`
+//!   set to zero at the restart. It then stays a fixed leading column of
+//!   `V`, out of the later Rayleigh-Ritz problems and restart rotations
+//!   (at k = 200, 24 to 167 of the 349 kept pairs on ico6 at the five
+//!   restarts), still in every orthogonalization; its purified vector is
+//!   set aside when it is locked.
 //!
 //! A block of `b` vectors sees up to `b` copies of a repeated eigenvalue, so
 //! the block size is chosen above the multiplicities to expect; columns that
@@ -34,6 +41,11 @@ use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
 use super::tall;
 use crate::error::{Result, SpectralError};
 use mesh_kernel::random::SplitMix64;
+
+/// Pairs are locked once their residual estimate is this fraction of the
+/// tolerance: dropping their coupling perturbs the Krylov relation by at
+/// most that much, two orders of magnitude below what they must meet.
+const LOCK: f64 = 0.01;
 
 /// A symmetric operator applied to blocks of vectors.
 pub(crate) trait BlockOperator {
@@ -103,7 +115,7 @@ pub(crate) struct Outcome<T> {
 pub(crate) fn solve<O: BlockOperator, T>(
     op: &O,
     cfg: &Config,
-    mut accept: impl FnMut(&[f64], MatRef<'_, f64>, Mat<f64>) -> Result<Verdict<T>>,
+    mut accept: impl FnMut(&[f64], Mat<f64>, Mat<f64>) -> Result<Verdict<T>>,
 ) -> Result<Outcome<T>> {
     let n = op.dim();
     let (b, m, want) = (cfg.block, cfg.basis, cfg.want);
@@ -136,11 +148,13 @@ pub(crate) fn solve<O: BlockOperator, T>(
         let estimate = |j: usize| ritz.beta[j] / ritz.theta[j].abs().max(f64::MIN_POSITIVE);
         let worst = (0..want).map(estimate).fold(0.0, f64::max);
         if worst <= est_tol {
-            let y = ks.ritz_vectors(&ritz, want);
             // Purified vectors from the Krylov relation (free); if the
             // explicit residuals reject them, from one more application of
             // B, which does not depend on the relation's rounding drift.
+            // `accept` owns the Ritz vectors (their block can hold its
+            // products): the second try forms them again.
             for fresh in [false, true] {
+                let y = ks.ritz_vectors(&ritz, want);
                 let u = if fresh {
                     let t = Instant::now();
                     let mut u = Mat::zeros(n, want);
@@ -155,7 +169,7 @@ pub(crate) fn solve<O: BlockOperator, T>(
                 } else {
                     ks.purified(&ritz, y.as_ref(), want)
                 };
-                let verdict = accept(&ritz.theta[..want], y.as_ref(), u)?;
+                let verdict = accept(&ritz.theta[..want], y, u)?;
                 let ratio = verdict.ratios.iter().copied().fold(0.0, f64::max);
                 if ratio <= 1.0 {
                     times.other += clock.elapsed().as_secs_f64();
@@ -180,7 +194,7 @@ pub(crate) fn solve<O: BlockOperator, T>(
             });
         }
         let p = (cfg.nev + (ks.s - cfg.nev) / 2).min(ks.s - b);
-        ks.restart(&ritz, p);
+        ks.restart(&ritz, p, want, LOCK * est_tol);
         times.other += clock.elapsed().as_secs_f64();
     }
     // The loop returns on its last iteration.
@@ -207,15 +221,26 @@ struct KrylovSchur {
     b: usize,
     s: usize,
     g_from: usize,
+    /// Leading columns of `V` that are locked Ritz vectors: `H` diagonal
+    /// and `G` zero there.
+    locked: usize,
+    /// The purified vectors of the locked columns (n x want, allocated at
+    /// the first lock).
+    locked_u: Option<Mat<f64>>,
 }
 
 /// Ritz pairs of the projected matrix, largest first.
 struct Ritz {
     theta: Vec<f64>,
-    /// Eigenvectors of `H` (s x s), columns in the order of `theta`.
+    /// Eigenvectors of `H` (s x s), columns in the order of `theta`: the
+    /// unit vector `e_j` for the locked column `j`, zero on the locked rows
+    /// for the others.
     vectors: Mat<f64>,
-    /// Residual norms `||G s_j||`.
+    /// Residual norms `||G s_j||` (zero for locked pairs).
     beta: Vec<f64>,
+    /// Where each pair comes from: below the locked count, that locked
+    /// column; above, the active pairs in decreasing order.
+    slot: Vec<usize>,
 }
 
 impl KrylovSchur {
@@ -230,6 +255,8 @@ impl KrylovSchur {
             b,
             s: 0,
             g_from: 0,
+            locked: 0,
+            locked_u: None,
         }
     }
 
@@ -242,7 +269,7 @@ impl KrylovSchur {
         }
         let norms: Vec<f64> = column_norms(&q);
         let empty = self.v.as_ref().subcols(0, 0);
-        orthonormalize_block(empty, &mut q, &norms, rng, &mut self.qr);
+        orthonormalize_block(empty, &mut q, &norms, &norms, rng, &mut self.qr);
         self.v.as_mut().subcols_mut(0, b).copy_from(&q);
     }
 
@@ -283,8 +310,9 @@ impl KrylovSchur {
         tall::mul(self.w.as_mut(), Accum::Add, q, a.as_ref(), -1.0);
         // Full passes.
         let basis = self.v.as_ref().subcols(0, t);
+        let mut current = column_norms(&self.w);
         for _ in 0..2 {
-            let before: Vec<f64> = column_norms(&self.w);
+            let before = std::mem::take(&mut current);
             let mut c = self.coef.as_mut().subrows_mut(0, t);
             tall::gram(c.rb_mut(), basis, self.w.as_ref());
             tall::mul(self.w.as_mut(), Accum::Add, basis, c.rb(), -1.0);
@@ -293,7 +321,8 @@ impl KrylovSchur {
                     a[(i, j)] += self.coef[(s + i, j)];
                 }
             }
-            let kept = column_norms(&self.w).iter().zip(&before).all(|(a, b)| *a >= 0.5 * b);
+            current = column_norms(&self.w);
+            let kept = current.iter().zip(&before).all(|(a, b)| *a >= 0.5 * b);
             if kept {
                 break;
             }
@@ -303,7 +332,7 @@ impl KrylovSchur {
                 self.h[(s + i, s + j)] = 0.5 * (a[(i, j)] + a[(j, i)]);
             }
         }
-        let r = orthonormalize_block(basis, &mut self.w, &norms, rng, &mut self.qr);
+        let r = orthonormalize_block(basis, &mut self.w, &norms, &current, rng, &mut self.qr);
         self.v.as_mut().subcols_mut(t, b).copy_from(&self.w);
         self.g.as_mut().subcols_mut(from, s - from).fill(0.0);
         self.g.as_mut().submatrix_mut(0, s, b, b).copy_from(&r);
@@ -313,33 +342,62 @@ impl KrylovSchur {
         Ok(())
     }
 
+    /// Ritz pairs: the locked columns as they are, the active block of
+    /// `H` diagonalized, merged largest first.
     fn rayleigh_ritz(&self) -> Result<Ritz> {
-        let s = self.s;
+        let (s, c) = (self.s, self.locked);
+        let na = s - c;
         let eig = self
             .h
             .as_ref()
-            .submatrix(0, 0, s, s)
+            .submatrix(c, c, na, na)
             .self_adjoint_eigen(Side::Lower)
             .map_err(|e| SpectralError::Dense(format!("projected eigenproblem: {e:?}")))?;
-        let theta: Vec<f64> = (0..s).map(|j| eig.S()[s - 1 - j]).collect();
-        let vectors = Mat::from_fn(s, s, |i, j| eig.U()[(i, s - 1 - j)]);
+        // Slot j < c: locked column j; slot c + i: the i-th largest active pair.
+        let value = |slot: usize| if slot < c { self.h[(slot, slot)] } else { eig.S()[na - 1 - (slot - c)] };
+        let mut slot: Vec<usize> = (0..s).collect();
+        slot.sort_by(|&x, &y| value(y).total_cmp(&value(x)));
+        let theta: Vec<f64> = slot.iter().map(|&x| value(x)).collect();
+        let mut vectors = Mat::zeros(s, s);
+        for (k, &x) in slot.iter().enumerate() {
+            if x < c {
+                vectors[(x, k)] = 1.0;
+            } else {
+                let from = eig.U().col(na - 1 - (x - c));
+                vectors.as_mut().col_mut(k).subrows_mut(c, na).copy_from(from);
+            }
+        }
+        // The locked columns of G are zero: their pairs' residual estimates too.
         let mut gs = Mat::zeros(self.b, s);
-        matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(0, s), vectors.as_ref(), 1.0, Par::Seq);
+        let (g, v) = (self.g.as_ref().subcols(c, na), vectors.as_ref().subrows(c, na));
+        matmul(gs.as_mut(), Accum::Replace, g, v, 1.0, Par::Seq);
         let beta = column_norms(&gs);
-        Ok(Ritz { theta, vectors, beta })
+        Ok(Ritz { theta, vectors, beta, slot })
     }
 
-    /// Ritz vectors `y_j = V s_j` of the first `want` pairs.
+    /// Ritz vectors `y_j = V s_j` of the first `want` pairs: the locked
+    /// ones copied, the others from the active columns of `V`, formed in
+    /// the first columns and moved to their places.
     fn ritz_vectors(&self, ritz: &Ritz, want: usize) -> Mat<f64> {
-        let (n, s) = (self.v.nrows(), self.s);
+        let (n, s, c) = (self.v.nrows(), self.s, self.locked);
+        let active: Vec<usize> = (0..want).filter(|&k| ritz.slot[k] >= c).collect();
+        let sa = Mat::from_fn(s - c, active.len(), |i, q| ritz.vectors[(c + i, active[q])]);
         let mut y = Mat::zeros(n, want);
-        tall::mul(
-            y.as_mut(),
-            Accum::Replace,
-            self.v.as_ref().subcols(0, s),
-            ritz.vectors.as_ref().subcols(0, want),
-            1.0,
-        );
+        let v = self.v.as_ref();
+        tall::mul(y.as_mut().subcols_mut(0, active.len()), Accum::Replace, v.subcols(c, s - c), sa.as_ref(), 1.0);
+        // active[q] >= q and increasing: moving the last first overwrites
+        // only columns already moved.
+        for (q, &k) in active.iter().enumerate().rev() {
+            if k != q {
+                let (mut left, right) = y.as_mut().split_at_col_mut(k);
+                right.col_mut(0).copy_from(left.rb_mut().col(q));
+            }
+        }
+        for (k, &j) in ritz.slot[..want].iter().enumerate() {
+            if j < c {
+                y.as_mut().col_mut(k).copy_from(v.col(j));
+            }
+        }
         y
     }
 
@@ -356,34 +414,69 @@ impl KrylovSchur {
         }
         let mut u = y.to_owned();
         tall::mul(u.as_mut(), Accum::Add, self.v.as_ref().subcols(s, b), gs.as_ref(), 1.0);
+        if let Some(kept) = &self.locked_u {
+            for (k, &j) in ritz.slot[..want].iter().enumerate() {
+                if j < self.locked {
+                    u.as_mut().col_mut(k).copy_from(kept.col(j));
+                }
+            }
+        }
         u
     }
 
-    /// Thick restart keeping the first `p` Ritz pairs.
-    fn restart(&mut self, ritz: &Ritz, p: usize) {
-        let (s, b) = (self.s, self.b);
-        let sp = ritz.vectors.as_ref().subcols(0, p);
-        tall::rotate_in_place(self.v.as_mut().subcols_mut(0, s), sp);
+    /// Thick restart keeping `p` Ritz pairs: the locked ones where they
+    /// are, and the largest active ones, of which those among the first
+    /// `want` whose residual estimate is at most `lock_tol` times their
+    /// value are locked in turn (Stewart 2001's deflation): their columns of
+    /// `G` are dropped, so that they leave the next Rayleigh-Ritz problems
+    /// and restart rotations, and their purified vectors are kept aside.
+    fn restart(&mut self, ritz: &Ritz, p: usize, want: usize, lock_tol: f64) {
+        let (n, s, b, c) = (self.v.nrows(), self.s, self.b, self.locked);
+        let locks = |k: usize| k < want && ritz.beta[k] <= lock_tol * ritz.theta[k].abs();
+        // The rotated pairs, largest first: those to lock, then the others.
+        let (mut rotated, mut others) = (Vec::new(), Vec::new());
+        for k in (0..s).filter(|&k| ritz.slot[k] >= c).take(p - c) {
+            if locks(k) && c + rotated.len() < want {
+                rotated.push(k);
+            } else {
+                others.push(k);
+            }
+        }
+        let newly = rotated.len();
+        rotated.extend(others);
+        let sp = Mat::from_fn(s - c, p - c, |i, q| ritz.vectors[(c + i, rotated[q])]);
+        tall::rotate_in_place(self.v.as_mut().subcols_mut(c, s - c), sp.as_ref());
         // Move Q right after the kept vectors (p + b <= s: no overlap).
         let (mut left, right) = self.v.as_mut().split_at_col_mut(s);
         left.rb_mut().subcols_mut(p, b).copy_from(right.rb().subcols(0, b));
-        let mut gs = Mat::zeros(b, p);
-        matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(0, s), sp, 1.0, Par::Seq);
-        self.h.fill(0.0);
-        for j in 0..p {
-            self.h[(j, j)] = ritz.theta[j];
+        let mut gs = Mat::zeros(b, p - c);
+        matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(c, s - c), sp.as_ref(), 1.0, Par::Seq);
+        if newly > 0 {
+            // u = y + Q G s / theta, as `purified` would give them now.
+            let u = self.locked_u.get_or_insert_with(|| Mat::zeros(n, want));
+            let mut dst = u.as_mut().subcols_mut(c, newly);
+            dst.copy_from(self.v.as_ref().subcols(c, newly));
+            let scaled = Mat::from_fn(b, newly, |i, q| gs[(i, q)] / ritz.theta[rotated[q]]);
+            tall::mul(dst, Accum::Add, self.v.as_ref().subcols(p, b), scaled.as_ref(), 1.0);
         }
+        let locked_theta: Vec<f64> = (0..c).map(|j| self.h[(j, j)]).collect();
+        self.h.fill(0.0);
+        for (j, &t) in locked_theta.iter().chain(rotated.iter().map(|&k| &ritz.theta[k])).enumerate() {
+            self.h[(j, j)] = t;
+        }
+        let (from, active) = (c + newly, p - c - newly);
         self.g.fill(0.0);
-        self.g.as_mut().subcols_mut(0, p).copy_from(&gs);
+        self.g.as_mut().subcols_mut(from, active).copy_from(gs.as_ref().subcols(newly, active));
         self.s = p;
-        self.g_from = 0;
+        self.locked = from;
+        self.g_from = from;
     }
 }
 
 /// Orthonormalizes the columns of `q` (already orthogonal to `prev` to
 /// working accuracy) in place, returning the upper-triangular `R` with
 /// `q_in = q_out R`. `norms` are the column norms before any
-/// orthogonalization; `work` two n x b buffers. Matrix-matrix Cholesky QR
+/// orthogonalization, `current` those of `q`; `work` two n x b buffers. Matrix-matrix Cholesky QR
 /// applied twice (Fukaya et al. 2014) on the column-normalized block when it
 /// is well conditioned; otherwise modified Gram-Schmidt twice, where a
 /// column that kept less than 1e-13 of its norm is numerically dependent (an
@@ -393,18 +486,18 @@ fn orthonormalize_block(
     prev: MatRef<'_, f64>,
     q: &mut Mat<f64>,
     norms: &[f64],
+    current: &[f64],
     rng: &mut SplitMix64,
     work: &mut [Mat<f64>; 2],
 ) -> Mat<f64> {
-    cholesky_qr2(q, norms, work).unwrap_or_else(|| gram_schmidt(prev, q, norms, rng))
+    cholesky_qr2(q, norms, current, work).unwrap_or_else(|| gram_schmidt(prev, q, norms, rng))
 }
 
-/// Cholesky QR, twice, through the buffers `work`; `None` (and `q`
-/// untouched) when a column is nearly dependent or the Gram matrix is too
-/// ill-conditioned for it.
-fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64], work: &mut [Mat<f64>; 2]) -> Option<Mat<f64>> {
+/// Cholesky QR, twice, through the buffers `work` (`scale`: the column
+/// norms of `q`); `None` (and `q` untouched) when a column is nearly
+/// dependent or the Gram matrix is too ill-conditioned for it.
+fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64], scale: &[f64], work: &mut [Mat<f64>; 2]) -> Option<Mat<f64>> {
     let b = q.ncols();
-    let scale: Vec<f64> = column_norms(q);
     if scale.iter().zip(norms).any(|(&c, &n)| !(c > 1e-10 * n && c > 0.0)) {
         return None;
     }
@@ -414,7 +507,7 @@ fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64], work: &mut [Mat<f64>; 2]) -> Op
         a.col_as_slice_mut(j).iter_mut().zip(q.col_as_slice(j)).for_each(|(d, &x)| *d = x * inv);
     }
     let mut r = Mat::from_fn(b, b, |i, j| if i == j { scale[j] } else { 0.0 });
-    for _ in 0..2 {
+    for pass in 0..2 {
         let mut gram = Mat::zeros(b, b);
         tall::gram(gram.as_mut(), a.as_ref(), a.as_ref());
         let llt = gram.llt(Side::Lower).ok()?;
@@ -425,12 +518,15 @@ fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64], work: &mut [Mat<f64>; 2]) -> Op
         }
         let mut linv = Mat::zeros(b, b);
         faer::linalg::triangular_inverse::invert_lower_triangular(linv.as_mut(), l, Par::Seq);
-        // a = a L^-T, R = L^T R.
-        tall::mul(next.as_mut(), Accum::Replace, a.as_ref(), linv.transpose(), 1.0);
-        std::mem::swap(a, next);
+        // a = a L^-T (into q the second time), R = L^T R.
+        if pass == 0 {
+            tall::mul(next.as_mut(), Accum::Replace, a.as_ref(), linv.transpose(), 1.0);
+            std::mem::swap(a, next);
+        } else {
+            tall::mul(q.as_mut(), Accum::Replace, a.as_ref(), linv.transpose(), 1.0);
+        }
         r = l.transpose() * &r;
     }
-    q.copy_from(&*a);
     Some(r)
 }
 
@@ -557,6 +653,41 @@ mod tests {
         for (j, t) in out.accepted.row(0).iter().enumerate() {
             let expect = if j < 5 { 1.5 } else { 1.0 / (2.0 + (j - 5) as f64) };
             assert!((t - expect).abs() < 1e-12, "{j}: {t} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn locked_pairs_stay_eigenpairs_with_their_purified_vectors() {
+        let values: Vec<f64> = (0..300).map(|i| 1.0 / (1.0 + i as f64)).collect();
+        let op = Diagonal(values.clone());
+        let (n, want, b, m) = (300, 12, 4, 30);
+        let mut rng = SplitMix64::new(5);
+        let mut ks = KrylovSchur::new(n, m, b);
+        ks.start(&mut rng);
+        let mut times = Timings::default();
+        for _ in 0..12 {
+            while ks.s + b <= m {
+                ks.expand(&op, &mut rng, &mut times).unwrap();
+            }
+            let ritz = ks.rayleigh_ritz().unwrap();
+            ks.restart(&ritz, 20, want, 1e-12);
+        }
+        let locked = ks.locked;
+        assert!(locked > 0 && locked <= want, "{locked} locked");
+        let kept = ks.locked_u.as_ref().unwrap();
+        for j in 0..locked {
+            let theta = ks.h[(j, j)];
+            let (v, u) = (ks.v.col(j), kept.col(j));
+            // B v = theta v to the locking tolerance, u = B v / theta.
+            let residual = (0..n).map(|i| (values[i] * v[i] - theta * v[i]).abs()).fold(0.0, f64::max);
+            let purified = (0..n).map(|i| (values[i] * v[i] / theta - u[i]).abs()).fold(0.0, f64::max);
+            assert!(residual < 1e-11 * theta && purified < 1e-11, "{j}: {residual:e} {purified:e}");
+            assert!((theta - values[j]).abs() < 1e-13, "{j}: {theta} against {}", values[j]);
+        }
+        // The Ritz values and estimates see the locked pairs as converged.
+        let ritz = ks.rayleigh_ritz().unwrap();
+        for k in 0..want {
+            assert!((ritz.theta[k] - values[k]).abs() < 1e-10, "{k}: {}", ritz.theta[k]);
         }
     }
 

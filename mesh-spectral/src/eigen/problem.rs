@@ -11,7 +11,7 @@
 //! eigenvector. Zero-mass vertices inside a massive component stay: they are
 //! constraints `(L x)_i = 0`, solved exactly by the harmonic extension.
 
-use faer::{Mat, MatRef};
+use faer::Mat;
 use sprs::CsMat;
 
 use crate::error::{Result, SpectralError};
@@ -85,12 +85,11 @@ impl<'a> Reordered<'a> {
     }
 
     /// `x` (rows in this order) with its rows back in the component's
-    /// order, by groups of 8 columns through a row-major buffer: one
-    /// scattered cache line per row and group instead of one per value.
-    pub fn to_component(&self, x: MatRef<'_, f64>) -> Mat<f64> {
+    /// order, in place, by groups of 8 columns through a row-major buffer:
+    /// one scattered cache line per row and group instead of one per value.
+    pub fn to_component(&self, mut x: Mat<f64>) -> Mat<f64> {
         const GROUP: usize = 8;
         let (n, k) = (x.nrows(), x.ncols());
-        let mut out = Mat::zeros(n, k);
         let mut rows = vec![[0.0; GROUP]; n];
         for g in (0..k).step_by(GROUP) {
             let width = GROUP.min(k - g);
@@ -100,9 +99,9 @@ impl<'a> Reordered<'a> {
                     rows[row][c] = col[i];
                 }
             }
-            super::quality::from_rows(&rows, out.as_mut().subcols_mut(g, width));
+            super::quality::from_rows(&rows, x.as_mut().subcols_mut(g, width));
         }
-        out
+        x
     }
 }
 
@@ -316,7 +315,7 @@ mod tests {
         }
         // 11 columns: a full group of 8 and a partial one.
         let x = Mat::from_fn(5, 11, |i, j| (order[i] * 100 + j) as f64);
-        assert!(r.to_component(x.as_ref()) == Mat::from_fn(5, 11, |i, j| (i * 100 + j) as f64));
+        assert!(r.to_component(x) == Mat::from_fn(5, 11, |i, j| (i * 100 + j) as f64));
         assert!(Reordered::new(&c, &[0, 0, 1, 2, 3]).is_err());
         assert!(Reordered::new(&c, &[0, 1, 2]).is_err());
         assert!(Reordered::new(&c, &[0, 1, 2, 3, 9]).is_err());

@@ -36,10 +36,10 @@ pub(crate) struct Stiffness<'a> {
     l: &'a CsMat<f64>,
 }
 
-/// `L x` and `|L| |x|` (the latter for the rounding level).
+/// `L x`, and the column norms of `|L| |x|` (for the rounding level).
 pub(crate) struct Products {
     pub lx: Mat<f64>,
-    abs: Mat<f64>,
+    abs_norms: Vec<f64>,
 }
 
 impl<'a> Stiffness<'a> {
@@ -48,7 +48,16 @@ impl<'a> Stiffness<'a> {
         Self { l }
     }
 
-    /// `L x` and `|L| |x|` in one pass over `L`, O(nnz k).
+    /// `L x` and the norms of the columns of `|L| |x|` in one pass over
+    /// `L`, O(nnz k).
+    pub fn apply(&self, x: MatRef<'_, f64>) -> Products {
+        self.apply_into(x, Mat::new())
+    }
+
+    /// [`Self::apply`] writing `L x` into `buffer` when it has the shape of
+    /// `x` (a block no longer needed: at 1e5-1e6 vertices and k = 200 a
+    /// fresh n x k block costs more in the kernel's page zeroing than the
+    /// products themselves).
     ///
     /// By groups of [`GROUP`] columns: `x` copied row by row, every row of
     /// `L` applied to the group's values of its neighbours (an 8-wide
@@ -56,20 +65,20 @@ impl<'a> Stiffness<'a> {
     /// Every copy walks the rows once with the group's columns side by side
     /// (a pass per column reads every row of 8 values 8 times). Groups of 32
     /// were measured slower (9.5 s against 7.6 for 200 columns at 470k
-    /// vertices, most of either in the kernel's zeroing of the two fresh
-    /// n x k outputs).
-    pub fn apply(&self, x: MatRef<'_, f64>) -> Products {
+    /// vertices, most of either in the kernel's zeroing of two fresh n x k
+    /// outputs, `L x` and `|L| |x|`, of which only the first is kept now).
+    pub fn apply_into(&self, x: MatRef<'_, f64>, buffer: Mat<f64>) -> Products {
         let (n, k) = (x.nrows(), x.ncols());
-        let mut lx = Mat::zeros(n, k);
-        let mut abs = Mat::zeros(n, k);
+        let mut lx = if buffer.shape() == (n, k) { buffer } else { Mat::zeros(n, k) };
+        let mut abs_norms = vec![0.0; k];
         let mut rows = vec![[0.0; GROUP]; n];
         let mut out = vec![[0.0; GROUP]; n];
-        let mut out_abs = vec![[0.0; GROUP]; n];
         for g in (0..k).step_by(GROUP) {
             let width = GROUP.min(k - g);
             let cols: Vec<_> = (g..g + width).map(|j| tall::column(x, j)).collect();
             let cols: Vec<&[f64]> = cols.iter().map(|c| &c[..]).collect();
             to_rows(&cols, &mut rows);
+            let mut squares = [0.0; GROUP];
             for (i, lane) in self.l.outer_iterator().enumerate() {
                 let (mut acc, mut acc_abs) = ([0.0; GROUP], [0.0; GROUP]);
                 for (r, &v) in lane.iter() {
@@ -80,12 +89,16 @@ impl<'a> Stiffness<'a> {
                     }
                 }
                 out[i] = acc;
-                out_abs[i] = acc_abs;
+                for c in 0..GROUP {
+                    squares[c] += acc_abs[c] * acc_abs[c];
+                }
             }
             from_rows(&out, lx.as_mut().subcols_mut(g, width));
-            from_rows(&out_abs, abs.as_mut().subcols_mut(g, width));
+            for (norm, sq) in abs_norms[g..g + width].iter_mut().zip(squares) {
+                *norm = sq.sqrt();
+            }
         }
-        Products { lx, abs }
+        Products { lx, abs_norms }
     }
 }
 
@@ -142,15 +155,14 @@ pub(crate) fn quality(
 ) -> Quality {
     let mut q = Quality::default();
     for (j, &lambda) in values.iter().enumerate() {
-        let (mut r, mut mx, mut lax) = (0.0, 0.0, 0.0);
-        let (lxj, axj) = (p.lx.col_as_slice(j), p.abs.col_as_slice(j));
+        let (mut r, mut mx) = (0.0, 0.0);
+        let lxj = p.lx.col_as_slice(j);
         for (i, &xi) in x.col(j).iter().enumerate() {
             let m = mass[i] * xi;
             r += (lxj[i] - lambda * m).powi(2);
             mx += m * m;
-            lax += axj[i] * axj[i];
         }
-        let (r, mx, lax) = (r.sqrt(), mx.sqrt(), lax.sqrt());
+        let (r, mx, lax) = (r.sqrt(), mx.sqrt(), p.abs_norms[j]);
         let denominator = (lambda.abs() + scale) * mx;
         let relative = if denominator > 0.0 { r / denominator } else { f64::INFINITY };
         let floor = if denominator > 0.0 { ROUNDING * (lax + lambda.abs() * mx) / denominator } else { 0.0 };
@@ -184,9 +196,10 @@ pub(crate) fn rayleigh_quotients(lx: &Mat<f64>, mass: &[f64], x: MatRef<'_, f64>
 /// `X R`, `R = C^-T S`, are M-orthonormal to rounding. From `X` and its
 /// products `p` (`L X` and `|L| |X|`, those of the acceptance test), it
 /// returns the values, `X R` and the products of `X R` without another pass
-/// over `L`: `(L X) R`, and `|L| |X| |R|`, the bound of `|L| |X R|` that
-/// the rounding of `(L X) R` calls for (an 8-wide pass over `L` per 8
-/// vectors cost 270 ms for 20 vectors at 470k vertices). O(n k^2).
+/// over `L`: `(L X) R`, and for the rounding of `(L X) R` the bound
+/// `|| |L| |X| |r_j| || <= sum_i |r_ij| || |L| |x_i| ||` (R is close to a
+/// permutation, the bound close to the norm itself; an 8-wide pass over `L`
+/// per 8 vectors cost 270 ms for 20 vectors at 470k vertices). O(n k^2).
 pub(crate) fn final_rayleigh_ritz(
     mass: &[f64],
     mut x: Mat<f64>,
@@ -207,12 +220,11 @@ pub(crate) fn final_rayleigh_ritz(
     let a = Mat::from_fn(k, k, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
     let eig = a.self_adjoint_eigen(Side::Lower).map_err(|e| SpectralError::Dense(format!("{e:?}")))?;
     let values = (0..k).map(|j| eig.S()[j]).collect();
-    // In place: each of the three n x k blocks (hundreds of MB at 1e5-1e6
+    // In place: each of the two n x k blocks (hundreds of MB at 1e5-1e6
     // vertices and k = 200) would otherwise be paid again in fresh pages.
     let rotation = cinv.transpose() * eig.U();
-    let abs_rotation = Mat::from_fn(k, k, |i, j| rotation[(i, j)].abs());
+    p.abs_norms = (0..k).map(|j| (0..k).map(|i| rotation[(i, j)].abs() * p.abs_norms[i]).sum()).collect();
     tall::rotate_in_place(p.lx.as_mut(), rotation.as_ref());
-    tall::rotate_in_place(p.abs.as_mut(), abs_rotation.as_ref());
     tall::rotate_in_place(x.as_mut(), rotation.as_ref());
     Ok((values, x, p))
 }
@@ -240,7 +252,10 @@ mod tests {
             let abs_want =
                 Mat::from_fn(30, 30, |i, j| dense[(i, j)].abs()) * Mat::from_fn(30, k, |i, j| x[(i, j)].abs());
             let p = Stiffness::new(&l).apply(x.as_ref());
-            assert!((&p.lx - &want).norm_max() < 1e-12 && (&p.abs - &abs_want).norm_max() < 1e-12, "{k} columns");
+            assert!((&p.lx - &want).norm_max() < 1e-12, "{k} columns");
+            for (j, norm) in p.abs_norms.iter().enumerate() {
+                assert!((norm - abs_want.col(j).norm_l2()).abs() < 1e-12 * norm.max(1.0), "{k} columns, {j}");
+            }
         }
     }
 
