@@ -180,6 +180,9 @@ pub(crate) fn solve<O: BlockOperator, T>(
                     est_tol = (est_tol * (0.5 / ratio).clamp(1e-4, 0.5)).max(1e-15);
                 }
             }
+            let t = Instant::now();
+            columns += ks.restore_locked(op, want)?;
+            times.apply += t.elapsed().as_secs_f64();
         }
         if restart == cfg.max_restarts {
             let residuals: Vec<f64> = (0..want).map(estimate).collect();
@@ -402,9 +405,13 @@ impl KrylovSchur {
     }
 
     /// Purified vectors `u_j = y_j + Q G s_j / theta_j = B y_j / theta_j`
-    /// from the Krylov relation.
-    fn purified(&self, ritz: &Ritz, y: MatRef<'_, f64>, want: usize) -> Mat<f64> {
-        let (s, b) = (self.s, self.b);
+    /// from the Krylov relation, in the block of the locked pairs' purified
+    /// vectors (their columns moved to their places; at 1e5-1e6 vertices a
+    /// fresh n x k block costs more in page zeroing than the product), which
+    /// it takes: [`Self::restore_locked`] forms it again if the iteration
+    /// goes on.
+    fn purified(&mut self, ritz: &Ritz, y: MatRef<'_, f64>, want: usize) -> Mat<f64> {
+        let (n, s, b, c) = (self.v.nrows(), self.s, self.b, self.locked);
         let mut gs = Mat::zeros(b, want);
         let sw = ritz.vectors.as_ref().subcols(0, want);
         matmul(gs.as_mut(), Accum::Replace, self.g.as_ref().subcols(0, s), sw, 1.0, Par::Seq);
@@ -412,16 +419,46 @@ impl KrylovSchur {
             let inv = 1.0 / ritz.theta[j];
             gs.col_as_slice_mut(j).iter_mut().for_each(|x| *x *= inv);
         }
-        let mut u = y.to_owned();
-        tall::mul(u.as_mut(), Accum::Add, self.v.as_ref().subcols(s, b), gs.as_ref(), 1.0);
-        if let Some(kept) = &self.locked_u {
-            for (k, &j) in ritz.slot[..want].iter().enumerate() {
-                if j < self.locked {
-                    u.as_mut().col_mut(k).copy_from(kept.col(j));
+        let mut u = match self.locked_u.take() {
+            Some(mut kept) => {
+                let mut target = vec![usize::MAX; c];
+                for (k, &j) in ritz.slot[..want].iter().enumerate() {
+                    if j < c {
+                        target[j] = k;
+                    }
                 }
+                move_columns(&mut kept, &target);
+                kept
+            }
+            None => Mat::zeros(n, want),
+        };
+        for (k, &j) in ritz.slot[..want].iter().enumerate() {
+            if j >= c {
+                u.as_mut().col_mut(k).copy_from(y.col(k));
             }
         }
+        // G s = 0 for the locked pairs: their columns stay as they are.
+        tall::mul(u.as_mut(), Accum::Add, self.v.as_ref().subcols(s, b), gs.as_ref(), 1.0);
         u
+    }
+
+    /// Forms the locked pairs' purified vectors `B v_j / theta_j` again
+    /// when [`Self::purified`] took them; returns the operator columns
+    /// applied.
+    fn restore_locked<O: BlockOperator>(&mut self, op: &O, want: usize) -> Result<usize> {
+        let (n, c) = (self.v.nrows(), self.locked);
+        if c == 0 || self.locked_u.is_some() {
+            return Ok(0);
+        }
+        let mut bv = Mat::zeros(n, c);
+        op.apply(self.v.as_ref().subcols(0, c), &mut bv)?;
+        let mut u = Mat::zeros(n, want);
+        for j in 0..c {
+            let inv = 1.0 / self.h[(j, j)];
+            u.col_as_slice_mut(j).iter_mut().zip(bv.col_as_slice(j)).for_each(|(d, &x)| *d = x * inv);
+        }
+        self.locked_u = Some(u);
+        Ok(c)
     }
 
     /// Thick restart keeping `p` Ritz pairs: the locked ones where they
@@ -470,6 +507,47 @@ impl KrylovSchur {
         self.s = p;
         self.locked = from;
         self.g_from = from;
+    }
+}
+
+/// Moves column `j` of `u` to column `target[j]` for every `j` below
+/// `target.len()` (`usize::MAX`: dropped), in place: each chain of moves
+/// from its free end, a cycle through one spare column.
+fn move_columns(u: &mut Mat<f64>, target: &[usize]) {
+    let c = target.len();
+    let mut moved = vec![false; c];
+    let mut spare = vec![0.0; u.nrows()];
+    for first in 0..c {
+        if moved[first] {
+            continue;
+        }
+        // The sources whose places must be free before `first` moves.
+        let mut chain = vec![first];
+        let mut next = target[first];
+        while next < c && !moved[next] && next != first {
+            chain.push(next);
+            next = target[next];
+        }
+        let cycle = next == first;
+        if cycle {
+            spare.copy_from_slice(u.col_as_slice(first));
+        }
+        for &src in chain.iter().rev() {
+            moved[src] = true;
+            let dst = target[src];
+            if dst == usize::MAX || dst == src {
+                continue;
+            }
+            if cycle && src == first {
+                u.col_as_slice_mut(dst).copy_from_slice(&spare);
+            } else if src < dst {
+                let (left, mut right) = u.as_mut().split_at_col_mut(dst);
+                right.rb_mut().col_mut(0).copy_from(left.rb().col(src));
+            } else {
+                let (mut left, right) = u.as_mut().split_at_col_mut(src);
+                left.rb_mut().col_mut(dst).copy_from(right.rb().col(0));
+            }
+        }
     }
 }
 
@@ -688,6 +766,41 @@ mod tests {
         let ritz = ks.rayleigh_ritz().unwrap();
         for k in 0..want {
             assert!((ritz.theta[k] - values[k]).abs() < 1e-10, "{k}: {}", ritz.theta[k]);
+        }
+    }
+
+    #[test]
+    fn columns_move_along_chains_and_cycles() {
+        let start = Mat::from_fn(3, 7, |i, j| (10 * j + i) as f64);
+        let drop = usize::MAX;
+        for target in [vec![2, 3, 0, drop], vec![1, 2, 3, 5], vec![0, 4, 1, 6], vec![3, 2, 1, 0], vec![drop, 0]] {
+            let mut u = start.clone();
+            move_columns(&mut u, &target);
+            for (j, &t) in target.iter().enumerate().filter(|(_, &t)| t != drop) {
+                assert!(u.col(t).iter().eq(start.col(j).iter()), "{target:?}: {j} to {t}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_rejected_acceptance_forms_the_locked_vectors_again() {
+        let values: Vec<f64> = (0..300).map(|i| 1.0 / (1.0 + i as f64)).collect();
+        let op = Diagonal(values.clone());
+        let cfg = Config { want: 12, nev: 14, block: 4, basis: 30, tol: 1e-10, max_restarts: 200, seed: 5 };
+        let mut calls = 0;
+        let out = solve(&op, &cfg, |theta, y, u| {
+            calls += 1;
+            // u = B y / theta, column by column, to the tolerance.
+            let worst = (0..theta.len())
+                .map(|j| (0..300).map(|i| (values[i] * y[(i, j)] / theta[j] - u[(i, j)]).abs()).fold(0.0, f64::max))
+                .fold(0.0, f64::max);
+            Ok(Verdict { ratios: vec![if calls <= 2 { 2.0 } else { 0.0 }], accepted: (theta.to_vec(), worst) })
+        })
+        .unwrap();
+        let (theta, worst) = out.accepted;
+        assert!(calls == 3 && worst < 1e-9, "{calls} calls, worst {worst:e}");
+        for (j, t) in theta.iter().enumerate() {
+            assert!((t - values[j]).abs() < 1e-12, "{j}: {t}");
         }
     }
 
