@@ -388,14 +388,7 @@ impl KrylovSchur {
         let mut y = Mat::zeros(n, want);
         let v = self.v.as_ref();
         tall::mul(y.as_mut().subcols_mut(0, active.len()), Accum::Replace, v.subcols(c, s - c), sa.as_ref(), 1.0);
-        // active[q] >= q and increasing: moving the last first overwrites
-        // only columns already moved.
-        for (q, &k) in active.iter().enumerate().rev() {
-            if k != q {
-                let (mut left, right) = y.as_mut().split_at_col_mut(k);
-                right.col_mut(0).copy_from(left.rb_mut().col(q));
-            }
-        }
+        move_columns(&mut y, &active);
         for (k, &j) in ritz.slot[..want].iter().enumerate() {
             if j < c {
                 y.as_mut().col_mut(k).copy_from(v.col(j));
