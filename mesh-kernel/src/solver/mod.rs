@@ -169,7 +169,7 @@ mod tests {
 
     /// A grid Laplacian plus a small multiple of the identity: symmetric
     /// positive definite with `rows * cols` unknowns.
-    fn grid(rows: usize, cols: usize) -> CsMat<f64> {
+    pub(super) fn grid(rows: usize, cols: usize) -> CsMat<f64> {
         let m = crate::shapes::grid(1.0, 1.0, rows, cols).unwrap();
         let l = crate::operators::cotan_laplacian(&m);
         let n = l.rows();

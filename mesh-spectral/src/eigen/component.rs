@@ -13,7 +13,6 @@ use super::krylov::{self, BlockOperator, Config, Verdict};
 use super::problem::{Component, Reordered};
 use super::quality::{final_rayleigh_ritz, quality, rayleigh_quotients, Quality, Stiffness};
 use super::shift_invert::ShiftInvert;
-use super::shift_invert::{HALF_LANES, LANES};
 use super::{dense, EigenOptions, EigenSolver, EigenStats};
 use crate::error::{Result, SpectralError};
 use mesh_kernel::solver::FillOrdering;
@@ -76,6 +75,13 @@ fn dense_component(c: &Component, want: usize, deflate: bool, scale: f64, option
     Ok(Partial { values, vectors, quality, stats })
 }
 
+/// The block of a Krylov run for up to 32 wanted pairs (with the guard),
+/// and the step by which larger blocks grow (8 per 64 pairs, up to 32).
+/// Blocks of 48 and 64 for k = 200 took more solve columns and time
+/// (BENCHMARKS.md, 2026-12-04).
+const NARROW_BLOCK: usize = 4;
+const BLOCK_STEP: usize = 8;
+
 /// Guard, block and basis sizes of a Krylov run.
 #[derive(Debug, Clone, Copy)]
 struct KrylovSizes {
@@ -89,9 +95,9 @@ impl KrylovSizes {
     fn new(want: usize, dim: usize, o: &EigenOptions) -> Option<Self> {
         let nev = want + o.guard.unwrap_or((want / 10).max(4));
         let block = o.block_size.unwrap_or(if nev <= 32 {
-            HALF_LANES
+            NARROW_BLOCK
         } else {
-            (LANES * nev.div_ceil(64)).clamp(LANES, 4 * LANES)
+            (BLOCK_STEP * nev.div_ceil(64)).clamp(BLOCK_STEP, 4 * BLOCK_STEP)
         });
         Self::with_block(want, dim, o, block)
     }
@@ -102,14 +108,14 @@ impl KrylovSizes {
         (basis + block <= dim).then_some(Self { nev, block, basis })
     }
 
-    /// The sizes of the next attempt: one more lane group in the block (when
+    /// The sizes of the next attempt: a block step more in the block (when
     /// the block size is automatic), the basis grown to match.
     fn grown(self, want: usize, dim: usize, o: &EigenOptions, at_least: usize) -> Self {
         if o.block_size.is_some() {
             return self;
         }
-        let step = if self.block < LANES { HALF_LANES } else { LANES };
-        let block = (self.block + step).max(at_least.next_multiple_of(HALF_LANES));
+        let step = if self.block < BLOCK_STEP { NARROW_BLOCK } else { BLOCK_STEP };
+        let block = (self.block + step).max(at_least.next_multiple_of(NARROW_BLOCK));
         Self::with_block(want, dim, o, block).unwrap_or(self)
     }
 }

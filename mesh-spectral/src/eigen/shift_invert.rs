@@ -25,23 +25,38 @@ use super::problem::Component;
 use super::tall::column;
 use crate::error::{Result, SpectralError};
 
-/// Right-hand sides per block solve: the width of one 512-bit vector of
-/// doubles (two AVX2 registers). A block whose last columns are at most
-/// [`HALF_LANES`] is solved with that narrower width for them.
-pub(crate) const LANES: usize = 8;
+/// Widths of the block solves, narrowest first: the columns of a block go
+/// to solves of the widest width the block calls for, and its last
+/// columns to the narrowest width that holds them (zero-padded).
+const WIDTHS: [usize; 4] = [4, 8, 16, 32];
 
-/// The narrower width of a block solve (one AVX2 register): a block of 4,
-/// or the last 4 columns of a block of 12, 20, ..., use it instead of
-/// padding 8 lanes with zeros.
-pub(crate) const HALF_LANES: usize = 4;
+/// The narrowest of [`WIDTHS`] that holds `b` columns (the widest if none).
+fn width_for(b: usize) -> usize {
+    WIDTHS.into_iter().find(|&w| w >= b).unwrap_or(WIDTHS[WIDTHS.len() - 1])
+}
 
-/// The lane widths that cover `b` columns: groups of [`LANES`], the last one
-/// of [`HALF_LANES`] when that is enough.
-fn group_widths(b: usize) -> impl Iterator<Item = (usize, usize)> {
-    (0..b.div_ceil(LANES)).map(move |g| {
-        let first = g * LANES;
-        let width = if b - first <= HALF_LANES { HALF_LANES } else { LANES };
-        (first, width)
+/// The widest solve for blocks of `b` columns: the factor's
+/// ([`Cholesky::widest_block`]), narrowed so that each thread gets a
+/// group when the block can be split (the groups are solved in parallel).
+fn widest_for(b: usize) -> usize {
+    #[cfg(feature = "rayon")]
+    let threads = rayon::current_num_threads().max(1);
+    #[cfg(not(feature = "rayon"))]
+    let threads = 1;
+    Cholesky::widest_block().min(width_for(b.div_ceil(threads)))
+}
+
+/// The groups `(first column, width)` of the block solves of `b` columns.
+fn lane_groups(b: usize) -> impl Iterator<Item = (usize, usize)> {
+    group_widths(b, widest_for(b))
+}
+
+/// The groups `(first column, width)` that cover `b` columns: of width
+/// `widest`, the last one of the narrowest width that holds the rest.
+fn group_widths(b: usize, widest: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..b.div_ceil(widest)).map(move |g| {
+        let first = g * widest;
+        (first, width_for(b - first).min(widest))
     })
 }
 
@@ -120,8 +135,8 @@ impl ShiftInvert {
         self.rows.len()
     }
 
-    /// `w = B q` for a block of columns: block solves of [`LANES`] columns
-    /// (in parallel across lane groups with the `rayon` feature).
+    /// `w = B q` for a block of columns: block solves of up to 32 columns
+    /// ([`lane_groups`]; in parallel across groups with the `rayon` feature).
     ///
     /// # Errors
     /// `SpectralError::Mesh` (`MeshError::Dimension`) if a block does not match the factor.
@@ -131,7 +146,7 @@ impl ShiftInvert {
         self.solve_groups(q.ncols(), &mut groups)?;
         // Row after row, the group's columns side by side (a pass per
         // column would read every lane `width` times).
-        for ((first, width), lanes) in group_widths(q.ncols()).zip(&groups) {
+        for ((first, width), lanes) in lane_groups(q.ncols()).zip(&groups) {
             let mut outs: Vec<_> = w.as_mut().subcols_mut(first, width.min(q.ncols() - first)).col_iter_mut().collect();
             for (row, coord) in lanes.chunks_exact(width).zip(&self.coords) {
                 if let Some((i, s)) = *coord {
@@ -148,7 +163,7 @@ impl ShiftInvert {
     /// Lane buffers for `b` columns, reused across applications.
     fn take_scratch(&self, b: usize) -> Vec<Vec<f64>> {
         let mut groups = self.scratch.lock().map(|mut s| std::mem::take(&mut *s)).unwrap_or_default();
-        let widths: Vec<usize> = group_widths(b).map(|(_, width)| width).collect();
+        let widths: Vec<usize> = lane_groups(b).map(|(_, width)| width).collect();
         groups.resize_with(widths.len(), Vec::new);
         for (g, width) in groups.iter_mut().zip(widths) {
             g.resize(self.coords.len() * width, 0.0);
@@ -165,13 +180,15 @@ impl ShiftInvert {
     /// Block solves of every group of the `b` columns, in the factor's order.
     fn solve_groups(&self, b: usize, groups: &mut [Vec<f64>]) -> Result<()> {
         let solve = |(_, width): (usize, usize), g: &mut Vec<f64>| -> Result<()> {
-            if width == HALF_LANES {
-                Ok(self.chol.solve_ordered_rows(g.as_chunks_mut::<HALF_LANES>().0)?)
-            } else {
-                Ok(self.chol.solve_ordered_rows(g.as_chunks_mut::<LANES>().0)?)
+            match width {
+                4 => self.chol.solve_ordered_rows(g.as_chunks_mut::<4>().0),
+                8 => self.chol.solve_ordered_rows(g.as_chunks_mut::<8>().0),
+                16 => self.chol.solve_ordered_rows(g.as_chunks_mut::<16>().0),
+                _ => self.chol.solve_ordered_rows(g.as_chunks_mut::<32>().0),
             }
+            .map_err(SpectralError::from)
         };
-        let widths: Vec<(usize, usize)> = group_widths(b).collect();
+        let widths: Vec<(usize, usize)> = lane_groups(b).collect();
         #[cfg(feature = "rayon")]
         {
             use rayon::prelude::*;
@@ -189,7 +206,7 @@ impl ShiftInvert {
     /// sequential sweep per group.
     fn gather(&self, q: MatRef<'_, f64>, scale: impl Fn(usize) -> f64, groups: &mut [Vec<f64>]) {
         let b = q.ncols();
-        for ((first, width), lanes) in group_widths(b).zip(groups.iter_mut()) {
+        for ((first, width), lanes) in lane_groups(b).zip(groups.iter_mut()) {
             let cols: Vec<(Cow<'_, [f64]>, f64)> =
                 (first..b.min(first + width)).map(|j| (column(q, j), scale(j))).collect();
             for (row, coord) in lanes.chunks_exact_mut(width).zip(&self.coords) {
@@ -233,7 +250,7 @@ impl ShiftInvert {
         let mut groups = self.take_scratch(y.ncols());
         self.gather(y, |j| 1.0 / theta[j], &mut groups);
         self.solve_groups(y.ncols(), &mut groups)?;
-        for ((first, width), lanes) in group_widths(y.ncols()).zip(&groups) {
+        for ((first, width), lanes) in lane_groups(y.ncols()).zip(&groups) {
             let mut outs: Vec<_> = x.as_mut().subcols_mut(first, width.min(y.ncols() - first)).col_iter_mut().collect();
             for (i, row) in lanes.chunks_exact(width).enumerate() {
                 for (out, &v) in outs.iter_mut().zip(row) {
@@ -261,13 +278,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn lane_groups_cover_the_block_with_the_narrow_width_last() {
-        let widths = |b| group_widths(b).collect::<Vec<_>>();
-        assert_eq!(widths(4), vec![(0, 4)]);
-        assert_eq!(widths(3), vec![(0, 4)]);
-        assert_eq!(widths(8), vec![(0, 8)]);
-        assert_eq!(widths(12), vec![(0, 8), (8, 4)]);
-        assert_eq!(widths(14), vec![(0, 8), (8, 8)]);
-        assert_eq!(widths(20), vec![(0, 8), (8, 8), (16, 4)]);
+    fn lane_groups_cover_the_block_with_the_narrowest_width_last() {
+        let widths = |b, widest| group_widths(b, widest).collect::<Vec<_>>();
+        assert_eq!(widths(4, 32), vec![(0, 4)]);
+        assert_eq!(widths(3, 32), vec![(0, 4)]);
+        assert_eq!(widths(12, 32), vec![(0, 16)]);
+        assert_eq!(widths(32, 32), vec![(0, 32)]);
+        assert_eq!(widths(32, 16), vec![(0, 16), (16, 16)]);
+        assert_eq!(widths(12, 8), vec![(0, 8), (8, 4)]);
+        assert_eq!(widths(14, 8), vec![(0, 8), (8, 8)]);
+        assert_eq!(widths(20, 8), vec![(0, 8), (8, 8), (16, 4)]);
+        assert_eq!(widths(40, 32), vec![(0, 32), (32, 8)]);
+        for b in 1..100 {
+            let w = widest_for(b);
+            assert!(WIDTHS.contains(&w) && w <= Cholesky::widest_block());
+            let groups = widths(b, w);
+            assert!(groups.windows(2).all(|p| p[1].0 == p[0].0 + p[0].1));
+            let (first, last) = groups[groups.len() - 1];
+            assert!(first + last >= b && first < b);
+        }
     }
 }
