@@ -220,7 +220,7 @@ struct KrylovSchur {
     w: Mat<f64>,
     coef: Mat<f64>,
     /// Two n x b buffers of the block QR.
-    qr: [Mat<f64>; 2],
+    qr: Mat<f64>,
     b: usize,
     s: usize,
     g_from: usize,
@@ -254,7 +254,7 @@ impl KrylovSchur {
             g: Mat::zeros(b, m),
             w: Mat::zeros(n, b),
             coef: Mat::zeros(m + b, b),
-            qr: [Mat::zeros(n, b), Mat::zeros(n, b)],
+            qr: Mat::zeros(n, b),
             b,
             s: 0,
             g_from: 0,
@@ -271,9 +271,10 @@ impl KrylovSchur {
             rng.fill_signed(q.col_as_slice_mut(j));
         }
         let norms: Vec<f64> = column_norms(&q);
-        let empty = self.v.as_ref().subcols(0, 0);
-        orthonormalize_block(empty, &mut q, &norms, &norms, rng, &mut self.qr);
-        self.v.as_mut().subcols_mut(0, b).copy_from(&q);
+        let mut gram = Mat::zeros(b, b);
+        tall::gram(gram.as_mut(), q.as_ref(), q.as_ref());
+        let (empty, rest) = self.v.as_mut().split_at_col_mut(0);
+        orthonormalize_block(empty.rb(), &mut q, gram, &norms, rest.subcols_mut(0, b), rng, &mut self.qr);
     }
 
     /// Appends `Q` to the basis and computes the next residual block:
@@ -311,21 +312,23 @@ impl KrylovSchur {
         let mut a = Mat::zeros(b, b);
         tall::gram(a.as_mut(), q, self.w.as_ref());
         tall::mul(self.w.as_mut(), Accum::Add, q, a.as_ref(), -1.0);
-        // Full passes.
+        // Full passes, each followed by the Gram matrix of W (its diagonal
+        // gives the column norms; the Cholesky QR starts from it).
         let basis = self.v.as_ref().subcols(0, t);
-        let mut current = column_norms(&self.w);
+        let mut before = column_norms(&self.w);
+        let mut gram = Mat::zeros(b, b);
         for _ in 0..2 {
-            let before = std::mem::take(&mut current);
             let mut c = self.coef.as_mut().subrows_mut(0, t);
             tall::gram(c.rb_mut(), basis, self.w.as_ref());
-            tall::mul(self.w.as_mut(), Accum::Add, basis, c.rb(), -1.0);
+            tall::mul_gram(self.w.as_mut(), Accum::Add, basis, c.rb(), -1.0, gram.as_mut());
             for i in 0..b {
                 for j in 0..b {
                     a[(i, j)] += self.coef[(s + i, j)];
                 }
             }
-            current = column_norms(&self.w);
+            let current: Vec<f64> = (0..b).map(|j| gram[(j, j)].max(0.0).sqrt()).collect();
             let kept = current.iter().zip(&before).all(|(a, b)| *a >= 0.5 * b);
+            before = current;
             if kept {
                 break;
             }
@@ -335,8 +338,8 @@ impl KrylovSchur {
                 self.h[(s + i, s + j)] = 0.5 * (a[(i, j)] + a[(j, i)]);
             }
         }
-        let r = orthonormalize_block(basis, &mut self.w, &norms, &current, rng, &mut self.qr);
-        self.v.as_mut().subcols_mut(t, b).copy_from(&self.w);
+        let (prev, next) = self.v.as_mut().split_at_col_mut(t);
+        let r = orthonormalize_block(prev.rb(), &mut self.w, gram, &norms, next.subcols_mut(0, b), rng, &mut self.qr);
         self.g.as_mut().subcols_mut(from, s - from).fill(0.0);
         self.g.as_mut().submatrix_mut(0, s, b, b).copy_from(&r);
         self.s = t;
@@ -545,42 +548,54 @@ fn move_columns(u: &mut Mat<f64>, target: &[usize]) {
 }
 
 /// Orthonormalizes the columns of `q` (already orthogonal to `prev` to
-/// working accuracy) in place, returning the upper-triangular `R` with
-/// `q_in = q_out R`. `norms` are the column norms before any
-/// orthogonalization, `current` those of `q`; `work` two n x b buffers. Matrix-matrix Cholesky QR
-/// applied twice (Fukaya et al. 2014) on the column-normalized block when it
-/// is well conditioned; otherwise modified Gram-Schmidt twice, where a
-/// column that kept less than 1e-13 of its norm is numerically dependent (an
-/// invariant subspace was found) and is replaced by a random direction
-/// orthogonal to everything (its diagonal of `R` is zero).
+/// working accuracy), returning the upper-triangular `R` with
+/// `q = out R`. `norms` are the column norms before any
+/// orthogonalization, `gram` the Gram matrix `q^T q`; the orthonormal
+/// block goes to `out`, through the n x b buffer `work`. Matrix-matrix
+/// Cholesky QR applied twice (Fukaya et al. 2014), the first time on the
+/// column-normalized block, when it is well conditioned; otherwise modified
+/// Gram-Schmidt twice (on `q`), where a column that kept less than 1e-13 of
+/// its norm is numerically dependent (an invariant subspace was found) and
+/// is replaced by a random direction orthogonal to everything (its
+/// diagonal of `R` is zero).
 fn orthonormalize_block(
     prev: MatRef<'_, f64>,
     q: &mut Mat<f64>,
+    gram: Mat<f64>,
     norms: &[f64],
-    current: &[f64],
+    mut out: MatMut<'_, f64>,
     rng: &mut SplitMix64,
-    work: &mut [Mat<f64>; 2],
+    work: &mut Mat<f64>,
 ) -> Mat<f64> {
-    cholesky_qr2(q, norms, current, work).unwrap_or_else(|| gram_schmidt(prev, q, norms, rng))
+    if let Some(r) = cholesky_qr2(q, gram, norms, out.rb_mut(), work) {
+        return r;
+    }
+    let r = gram_schmidt(prev, q, norms, rng);
+    out.copy_from(&*q);
+    r
 }
 
-/// Cholesky QR, twice, through the buffers `work` (`scale`: the column
-/// norms of `q`); `None` (and `q` untouched) when a column is nearly
-/// dependent or the Gram matrix is too ill-conditioned for it.
-fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64], scale: &[f64], work: &mut [Mat<f64>; 2]) -> Option<Mat<f64>> {
+/// Cholesky QR, twice, from the Gram matrix `gram = q^T q`, into `out`
+/// through the buffer `work`; `None` (and `out` untouched) when a column
+/// is nearly dependent (lost more than all but 1e-10 of its norm `norms`)
+/// or the Gram matrix is too ill-conditioned for it. The first pass
+/// scales the Gram matrix rather than the block: `q D^-1` has the Gram
+/// matrix `D^-1 gram D^-1`, and `q D^-1 L^-T` is one product.
+fn cholesky_qr2(
+    q: &Mat<f64>,
+    gram: Mat<f64>,
+    norms: &[f64],
+    mut out: MatMut<'_, f64>,
+    work: &mut Mat<f64>,
+) -> Option<Mat<f64>> {
     let b = q.ncols();
+    let scale: Vec<f64> = (0..b).map(|j| gram[(j, j)].max(0.0).sqrt()).collect();
     if scale.iter().zip(norms).any(|(&c, &n)| !(c > 1e-10 * n && c > 0.0)) {
         return None;
     }
-    let [a, next] = work;
-    for (j, &sj) in scale.iter().enumerate() {
-        let inv = 1.0 / sj;
-        a.col_as_slice_mut(j).iter_mut().zip(q.col_as_slice(j)).for_each(|(d, &x)| *d = x * inv);
-    }
+    let mut gram = Mat::from_fn(b, b, |i, j| gram[(i, j)] / (scale[i] * scale[j]));
     let mut r = Mat::from_fn(b, b, |i, j| if i == j { scale[j] } else { 0.0 });
     for pass in 0..2 {
-        let mut gram = Mat::zeros(b, b);
-        tall::gram(gram.as_mut(), a.as_ref(), a.as_ref());
         let llt = gram.llt(Side::Lower).ok()?;
         let l = llt.L();
         let (dmin, dmax) = (0..b).map(|i| l[(i, i)]).fold((f64::INFINITY, 0.0f64), |(a, z), d| (a.min(d), z.max(d)));
@@ -589,14 +604,14 @@ fn cholesky_qr2(q: &mut Mat<f64>, norms: &[f64], scale: &[f64], work: &mut [Mat<
         }
         let mut linv = Mat::zeros(b, b);
         faer::linalg::triangular_inverse::invert_lower_triangular(linv.as_mut(), l, Par::Seq);
-        // a = a L^-T (into q the second time), R = L^T R.
-        if pass == 0 {
-            tall::mul(next.as_mut(), Accum::Replace, a.as_ref(), linv.transpose(), 1.0);
-            std::mem::swap(a, next);
-        } else {
-            tall::mul(q.as_mut(), Accum::Replace, a.as_ref(), linv.transpose(), 1.0);
-        }
         r = l.transpose() * &r;
+        // work = q D^-1 L^-T, then out = work L^-T.
+        if pass == 0 {
+            let factor = Mat::from_fn(b, b, |i, j| linv[(j, i)] / scale[i]);
+            tall::mul_gram(work.as_mut(), Accum::Replace, q.as_ref(), factor.as_ref(), 1.0, gram.as_mut());
+        } else {
+            tall::mul(out.rb_mut(), Accum::Replace, work.as_ref(), linv.transpose(), 1.0);
+        }
     }
     Some(r)
 }

@@ -148,6 +148,48 @@ pub(crate) fn mul(out: MatMut<'_, f64>, accum: Accum, a: MatRef<'_, f64>, c: Mat
     mul_seq(out, accum, a, c, alpha);
 }
 
+/// [`mul`], and `gram = out^T out` of the result, each chunk of rows added
+/// to the Gram matrix while it is still in cache (one pass over `out` less
+/// than [`mul`] then [`gram`]).
+pub(crate) fn mul_gram(
+    out: MatMut<'_, f64>,
+    accum: Accum,
+    a: MatRef<'_, f64>,
+    c: MatRef<'_, f64>,
+    alpha: f64,
+    mut gram: MatMut<'_, f64>,
+) {
+    let (n, m) = (a.nrows(), c.ncols());
+    let parts = slabs(n, n * a.ncols() * m);
+    let slab = |mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, mut share: MatMut<'_, f64>| {
+        let chunk = chunk_rows(a.ncols());
+        share.fill(0.0);
+        for r0 in (0..a.nrows()).step_by(chunk) {
+            let len = chunk.min(a.nrows() - r0);
+            let mut o = out.rb_mut().subrows_mut(r0, len);
+            matmul(o.rb_mut(), accum, a.subrows(r0, len), c, alpha, Par::Seq);
+            matmul(share.rb_mut(), Accum::Add, o.rb().transpose(), o.rb(), 1.0, Par::Seq);
+        }
+    };
+    #[cfg(feature = "rayon")]
+    if parts > 1 {
+        use rayon::prelude::*;
+        let sum = out
+            .par_row_partition_mut(parts)
+            .zip(a.par_row_partition(parts))
+            .map(|(o, a)| {
+                let mut share = Mat::zeros(m, m);
+                slab(o, a, share.as_mut());
+                share
+            })
+            .reduce(|| Mat::zeros(m, m), |x, y| x + y);
+        gram.copy_from(&sum);
+        return;
+    }
+    let _ = parts;
+    slab(out, a, gram);
+}
+
 /// `v[:, ..p] = v S` in place (v: n x s, S: s x p, p <= s), by slabs of
 /// rows so that only a small buffer is needed.
 pub(crate) fn rotate_in_place(v: MatMut<'_, f64>, s: MatRef<'_, f64>) {
@@ -198,6 +240,13 @@ mod tests {
             let mut g = Mat::zeros(k, k);
             gram_weighted(g.as_mut(), a.as_ref(), &w);
             let want = a.transpose() * Mat::from_fn(n, k, |i, j| w[i] * a[(i, j)]);
+            assert!((&g - &want).norm_max() < 1e-9 * want.norm_max().max(1.0));
+            let mut out = b.clone();
+            let mut g = Mat::zeros(m, m);
+            mul_gram(out.as_mut(), Accum::Add, a.as_ref(), c.as_ref(), -1.0, g.as_mut());
+            let want = &b - &a * &c;
+            assert!((&out - &want).norm_max() < 1e-9 * want.norm_max().max(1.0));
+            let want = want.transpose() * &want;
             assert!((&g - &want).norm_max() < 1e-9 * want.norm_max().max(1.0));
             let s = Mat::from_fn(k, k - 1, |i, j| ((i * j) % 5) as f64 - 2.0);
             let mut v = a.clone();
