@@ -106,6 +106,10 @@ pub(crate) struct Outcome<T> {
     pub timings: Timings,
 }
 
+/// Bases of at least this many columns keep a smaller share of their
+/// unwanted Ritz pairs at a thick restart.
+const WIDE_BASIS: usize = 256;
+
 /// Runs block Krylov-Schur on `op` until the `want` largest pairs pass the
 /// estimate and then `accept`, which gets the Ritz values, Ritz vectors `y`
 /// and purified vectors `u = B y / theta`, which it owns (first from the
@@ -196,13 +200,16 @@ pub(crate) fn solve<O: BlockOperator, T>(
                 residuals,
             });
         }
-        // Kept: the nev wanted and guard pairs and 2/5 of the rest. For
-        // k = 200 (basis 500) keeping half took 5 restarts where 2/5 takes
-        // 4, for the same 1,120 solve columns: 54.3 s against 57.1 s at
-        // 470k vertices, 4.2 s against 4.4 s on ico6; a third took 64
-        // more columns, 45% one restart more on ico6. k = 20 on the bunny at
-        // 117k: 124 columns against 116, the same time within noise.
-        let p = (cfg.nev + (ks.s - cfg.nev) * 2 / 5).min(ks.s - b);
+        // Kept: the nev wanted and guard pairs and a share of the rest,
+        // smaller for a wide basis, whose rotations cost more than the solve
+        // columns saved. k = 200 (basis 500): keeping 2/5 took 4 restarts
+        // where half took 5, for the same 1,120 solve columns (54.3 s
+        // against 57.1 s at 470k vertices, 4.2 s against 4.4 s on ico6; a
+        // third took 64 more columns). k = 20 (basis 56) at 470k: 2/5 took
+        // 124 columns against 116 and 6.5 s against 6.2 s. Bases between
+        // 56 and 500 columns were not measured; the switch is at 256.
+        let rest = ks.s - cfg.nev;
+        let p = (cfg.nev + if ks.s >= WIDE_BASIS { rest * 2 / 5 } else { rest / 2 }).min(ks.s - b);
         ks.restart(&ritz, p, want, LOCK * est_tol);
         times.other += clock.elapsed().as_secs_f64();
     }
