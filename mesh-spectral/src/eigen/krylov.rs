@@ -232,7 +232,7 @@ struct KrylovSchur {
     g: Mat<f64>,
     w: Mat<f64>,
     coef: Mat<f64>,
-    /// Two n x b buffers of the block QR.
+    /// The n x b buffer of the block QR.
     qr: Mat<f64>,
     b: usize,
     s: usize,
