@@ -75,11 +75,12 @@ fn dense_component(c: &Component, want: usize, deflate: bool, scale: f64, option
     Ok(Partial { values, vectors, quality, stats })
 }
 
-/// The block of a Krylov run for up to 32 wanted pairs (with the guard),
-/// and the step by which larger blocks grow (8 per 64 pairs, up to 32).
-/// Blocks of 48 and 64 for k = 200 took more solve columns and time
-/// (BENCHMARKS.md, 2026-12-04).
+/// The block of a Krylov run for up to 32 wanted pairs (with the guard).
 const NARROW_BLOCK: usize = 4;
+
+/// The step by which larger blocks grow: 8 per 64 pairs, up to 32 (blocks
+/// of 48 and 64 for k = 200 took more solve columns and time, BENCHMARKS.md,
+/// 2026-12-04).
 const BLOCK_STEP: usize = 8;
 
 /// Guard, block and basis sizes of a Krylov run.

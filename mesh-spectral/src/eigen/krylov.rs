@@ -283,9 +283,9 @@ impl KrylovSchur {
         for j in 0..b {
             rng.fill_signed(q.col_as_slice_mut(j));
         }
-        let norms: Vec<f64> = column_norms(&q);
         let mut gram = Mat::zeros(b, b);
         tall::gram(gram.as_mut(), q.as_ref(), q.as_ref());
+        let norms = gram_norms(&gram);
         let (empty, rest) = self.v.as_mut().split_at_col_mut(0);
         orthonormalize_block(empty.rb(), &mut q, gram, &norms, rest.subcols_mut(0, b), rng, &mut self.qr);
     }
@@ -322,14 +322,15 @@ impl KrylovSchur {
             tall::mul(self.w.as_mut(), Accum::Add, self.v.as_ref().subcols(from, s - from), g.transpose(), -1.0);
         }
         let q = self.v.as_ref().subcols(s, b);
+        // Every product into W also forms W's Gram matrix: its diagonal
+        // gives the column norms, and the Cholesky QR starts from it.
         let mut a = Mat::zeros(b, b);
-        tall::gram(a.as_mut(), q, self.w.as_ref());
-        tall::mul(self.w.as_mut(), Accum::Add, q, a.as_ref(), -1.0);
-        // Full passes, each followed by the Gram matrix of W (its diagonal
-        // gives the column norms; the Cholesky QR starts from it).
-        let basis = self.v.as_ref().subcols(0, t);
-        let mut before = column_norms(&self.w);
         let mut gram = Mat::zeros(b, b);
+        tall::gram(a.as_mut(), q, self.w.as_ref());
+        tall::mul_gram(self.w.as_mut(), Accum::Add, q, a.as_ref(), -1.0, gram.as_mut());
+        // Full passes.
+        let basis = self.v.as_ref().subcols(0, t);
+        let mut before = gram_norms(&gram);
         for _ in 0..2 {
             let mut c = self.coef.as_mut().subrows_mut(0, t);
             tall::gram(c.rb_mut(), basis, self.w.as_ref());
@@ -339,7 +340,7 @@ impl KrylovSchur {
                     a[(i, j)] += self.coef[(s + i, j)];
                 }
             }
-            let current: Vec<f64> = (0..b).map(|j| gram[(j, j)].max(0.0).sqrt()).collect();
+            let current = gram_norms(&gram);
             let kept = current.iter().zip(&before).all(|(a, b)| *a >= 0.5 * b);
             before = current;
             if kept {
@@ -602,7 +603,7 @@ fn cholesky_qr2(
     work: &mut Mat<f64>,
 ) -> Option<Mat<f64>> {
     let b = q.ncols();
-    let scale: Vec<f64> = (0..b).map(|j| gram[(j, j)].max(0.0).sqrt()).collect();
+    let scale = gram_norms(&gram);
     if scale.iter().zip(norms).any(|(&c, &n)| !(c > 1e-10 * n && c > 0.0)) {
         return None;
     }
@@ -696,6 +697,12 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     }
     let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
     acc[0] + acc[1] + acc[2] + acc[3] + tail
+}
+
+/// The column norms of a block from its Gram matrix (square roots of the
+/// diagonal).
+fn gram_norms(gram: &Mat<f64>) -> Vec<f64> {
+    (0..gram.ncols()).map(|j| gram[(j, j)].max(0.0).sqrt()).collect()
 }
 
 /// Euclidean norms of the columns (a plain dot product: faer's overflow-safe
