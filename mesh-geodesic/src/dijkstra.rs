@@ -4,18 +4,20 @@
 //!
 //! Edge weights are the Euclidean edge lengths, stored with the neighbours
 //! in compressed sparse rows (built from the cached connectivity in
-//! O(V + F)); the priority queue is a radix heap on the distances' bits
-//! (Ahuja, Mehlhorn, Orlin and Tarjan 1990) with lazy deletion, and settled
-//! vertices are marked in a bitset. [`DijkstraGraph`] keeps the graph, in a
-//! breadth-first vertex numbering that keeps the front's memory together,
-//! for repeated queries. Cost O(V + E) per query plus the heap's
-//! redistributions (at most 64 per entry), O(V + E) memory.
+//! O(V + F)); the priority queue is an indexed 4-ary heap with decrease-key,
+//! each vertex's distance, predecessor and heap position in one 16-byte
+//! record, so that relaxing an edge touches one cache line. A vertex's ring
+//! is prefetched when it enters the heap. [`DijkstraGraph`] keeps the
+//! graph, in a breadth-first vertex numbering that keeps the front's memory
+//! together, for repeated queries. Cost O((V + E) log V) per query (the
+//! logarithm of the front's size, a few hundred to a few thousand entries
+//! on a mesh), O(V + E) memory.
 
 use mesh_kernel::{TriMesh, VertexId};
 
 use crate::edge_graph::EdgeGraph;
 use crate::error::{GeodesicError, Result};
-use crate::radix_heap::RadixHeap;
+use crate::indexed_heap::{IndexedHeap, Positions, NOT_QUEUED, POPPED};
 use crate::support::{breadth_first_order, validate_source_indices};
 
 /// Options of [`dijkstra`].
@@ -87,8 +89,7 @@ impl ShortestPaths {
 ///
 /// Builds the edge graph for this one call (O(V + F), about as long as the
 /// search itself on a mesh larger than the cache); for several queries on
-/// one mesh, [`DijkstraGraph`] builds it once. Cost O(V + E) plus the radix
-/// heap's redistributions.
+/// one mesh, [`DijkstraGraph`] builds it once. Cost O((V + E) log V).
 ///
 /// ```
 /// use mesh_kernel::{shapes, VertexId};
@@ -108,9 +109,9 @@ impl ShortestPaths {
 pub fn dijkstra(mesh: &TriMesh, sources: &[VertexId], options: &DijkstraOptions) -> Result<ShortestPaths> {
     let seeds = validate(mesh.vertex_count(), sources, options)?;
     let graph = EdgeGraph::new(mesh, robust_lengths(mesh), None);
-    let mut paths = ShortestPaths::unreached(mesh.vertex_count());
-    propagate(&graph, &seeds, options.max_distance, &mut paths);
-    Ok(paths)
+    let mut search = Search::unreached(mesh.vertex_count());
+    search.propagate(&graph, &seeds, options.max_distance);
+    Ok(search.into_paths(None))
 }
 
 /// A mesh's edge graph prepared for repeated [`dijkstra`] queries: the
@@ -118,8 +119,8 @@ pub fn dijkstra(mesh: &TriMesh, sources: &[VertexId], options: &DijkstraOptions)
 /// over a breadth-first renumbering of the vertices (neighbours get nearby
 /// numbers, so the front of a search touches little memory even when the
 /// mesh's own vertex order is scattered, as after subdivision). Building it
-/// costs O(V + F); each query O(V + E) plus the radix heap's
-/// redistributions and an O(V) translation back to the mesh's numbering.
+/// costs O(V + F); each query O((V + E) log V) and an O(V) translation back
+/// to the mesh's numbering.
 ///
 /// ```
 /// use mesh_kernel::{shapes, VertexId};
@@ -165,19 +166,9 @@ impl DijkstraGraph {
     pub fn shortest_paths(&self, sources: &[VertexId], options: &DijkstraOptions) -> Result<ShortestPaths> {
         let seeds = validate(self.vertex_count(), sources, options)?;
         let seeds: Vec<(VertexId, u32)> = seeds.iter().map(|&(s, l)| (VertexId(self.rank[s.idx()]), l)).collect();
-        let mut internal = ShortestPaths::unreached(self.vertex_count());
-        propagate(&self.graph, &seeds, options.max_distance, &mut internal);
-        let at = |v: usize| self.rank[v] as usize;
-        Ok(ShortestPaths {
-            distance: (0..self.vertex_count()).map(|v| internal.distance[at(v)]).collect(),
-            predecessor: (0..self.vertex_count())
-                .map(|v| match internal.predecessor[at(v)] {
-                    p if p.is_valid() => VertexId(self.order[p.idx()]),
-                    p => p,
-                })
-                .collect(),
-            source_index: (0..self.vertex_count()).map(|v| internal.source_index[at(v)]).collect(),
-        })
+        let mut search = Search::unreached(self.vertex_count());
+        search.propagate(&self.graph, &seeds, options.max_distance);
+        Ok(search.into_paths(Some(&self.order)))
     }
 }
 
@@ -202,53 +193,130 @@ pub(crate) fn robust_lengths(mesh: &TriMesh) -> bool {
     !(2f64.powi(-100)..=2f64.powi(100)).contains(&mesh_kernel::units::length_unit(mesh))
 }
 
-/// Dijkstra from `seeds` (vertex, label) over `graph` into an existing
-/// labelling, all in the graph's numbering: a vertex is updated only where
-/// the new distance is strictly smaller than the one already stored, which
-/// makes repeated calls an exact incremental multi-source search
-/// (farthest-point sampling). Seeds must be in range. A vertex's distance is
-/// the smallest `d(u) + |uw|` over its neighbours, each sum rounded once,
-/// whatever the heap's order among equal keys.
-pub(crate) fn propagate(graph: &EdgeGraph, seeds: &[(VertexId, u32)], max_distance: f64, paths: &mut ShortestPaths) {
-    let mut heap = RadixHeap::new();
-    for &(s, label) in seeds {
-        if paths.distance[s.idx()] > 0.0 || paths.source_index[s.idx()] == u32::MAX {
-            paths.distance[s.idx()] = 0.0;
-            paths.predecessor[s.idx()] = VertexId::INVALID;
-            paths.source_index[s.idx()] = label;
-            heap.push(0.0, s.0);
-        }
+/// A vertex's state in a search: 16 bytes, one cache line for the three
+/// things an edge relaxation reads or writes.
+#[derive(Debug, Clone, Copy)]
+struct VertexState {
+    distance: f64,
+    /// The previous vertex on a shortest path (graph numbering), or
+    /// `u32::MAX`.
+    predecessor: u32,
+    /// The heap's bookkeeping ([`Positions`]).
+    position: u32,
+}
+
+/// The state of a (possibly incremental) multi-source search, in the
+/// graph's numbering.
+#[derive(Debug, Clone)]
+pub(crate) struct Search {
+    state: Vec<VertexState>,
+    /// Position in the source list of the nearest source, `u32::MAX` where
+    /// unreached; set when a vertex is popped, from its predecessor's.
+    label: Vec<u32>,
+    /// `true` once a search ran: the heap positions it left must be reset
+    /// before the next one.
+    searched: bool,
+}
+
+impl Positions for Vec<VertexState> {
+    #[inline]
+    fn position(&self, vertex: u32) -> u32 {
+        self[vertex as usize].position
     }
-    let ShortestPaths { distance, predecessor, source_index } = paths;
-    let mut settled = vec![0u64; graph.vertex_count().div_ceil(64)];
-    while let Some((d, v)) = heap.pop() {
-        let (word, bit) = (v as usize / 64, 1u64 << (v % 64));
-        if settled[word] & bit != 0 {
-            continue; // stale entry: settled at a smaller distance
-        }
-        if d > max_distance {
-            break;
-        }
-        settled[word] |= bit;
-        let label = source_index[v as usize];
-        let (ring, lengths) = graph.ring(v as usize);
-        for (&w, &l) in ring.iter().zip(lengths) {
-            let nd = d + l;
-            if nd < distance[w as usize] {
-                distance[w as usize] = nd;
-                predecessor[w as usize] = VertexId(v);
-                source_index[w as usize] = label;
-                graph.prefetch_ring(w as usize);
-                heap.push(nd, w);
+    #[inline]
+    fn set_position(&mut self, vertex: u32, position: u32) {
+        self[vertex as usize].position = position;
+    }
+}
+
+impl Search {
+    /// Every one of `vertex_count` vertices unreached. O(V).
+    pub(crate) fn unreached(vertex_count: usize) -> Self {
+        let state = VertexState { distance: f64::INFINITY, predecessor: u32::MAX, position: NOT_QUEUED };
+        Self { state: vec![state; vertex_count], label: vec![u32::MAX; vertex_count], searched: false }
+    }
+
+    /// Distance of graph vertex `i` to its nearest source so far.
+    #[inline]
+    pub(crate) fn distance(&self, i: usize) -> f64 {
+        self.state[i].distance
+    }
+
+    /// Label (source position) of graph vertex `i`'s nearest source so far.
+    #[inline]
+    pub(crate) fn label(&self, i: usize) -> u32 {
+        self.label[i]
+    }
+
+    /// The paths in the mesh's numbering: graph vertex `i` is mesh vertex
+    /// `order[i]` (the identity without `order`). O(V).
+    fn into_paths(self, order: Option<&[u32]>) -> ShortestPaths {
+        let mesh_vertex = |i: u32| order.map_or(i, |o| o[i as usize]);
+        let mut paths = ShortestPaths::unreached(self.state.len());
+        for (i, (s, &label)) in self.state.iter().zip(&self.label).enumerate() {
+            let v = mesh_vertex(i as u32) as usize;
+            paths.distance[v] = s.distance;
+            paths.source_index[v] = label;
+            if s.predecessor != u32::MAX {
+                paths.predecessor[v] = VertexId(mesh_vertex(s.predecessor));
             }
         }
+        paths
     }
-    if max_distance.is_finite() {
-        for v in 0..distance.len() {
-            if distance[v] > max_distance {
-                distance[v] = f64::INFINITY;
-                predecessor[v] = VertexId::INVALID;
-                source_index[v] = u32::MAX;
+
+    /// Dijkstra from `seeds` (graph vertex, label) over `graph`, on top of
+    /// what earlier calls found: a vertex is updated only where the new
+    /// distance is strictly smaller than the one already stored, which
+    /// makes repeated calls an exact incremental multi-source search
+    /// (farthest-point sampling). Seeds must be in range. A vertex's
+    /// distance is the smallest `d(u) + |uw|` over its neighbours, each sum
+    /// rounded once, whatever the heap's order among equal keys. Vertices
+    /// farther than `max_distance` are left (or put back) unreached.
+    pub(crate) fn propagate(&mut self, graph: &EdgeGraph, seeds: &[(VertexId, u32)], max_distance: f64) {
+        let mut heap = IndexedHeap::new();
+        if std::mem::replace(&mut self.searched, true) {
+            for s in self.state.iter_mut() {
+                s.position = NOT_QUEUED;
+            }
+        }
+        for &(s, label) in seeds {
+            let st = &mut self.state[s.idx()];
+            if st.distance > 0.0 || self.label[s.idx()] == u32::MAX {
+                *st = VertexState { distance: 0.0, predecessor: u32::MAX, position: st.position };
+                self.label[s.idx()] = label;
+                heap.push_or_decrease(0.0, s.0, &mut self.state);
+            }
+        }
+        while let Some((d, v)) = heap.pop(&mut self.state) {
+            if d > max_distance {
+                break;
+            }
+            let p = self.state[v as usize].predecessor;
+            if p != u32::MAX {
+                self.label[v as usize] = self.label[p as usize];
+            }
+            for e in graph.ring(v as usize) {
+                let (w, nd) = (e.to, d + e.length);
+                let st = &mut self.state[w as usize];
+                // A popped vertex is never improved (its distance is at most
+                // `d`, and `d + length >= d`); the test keeps it so.
+                if nd < st.distance && st.position != POPPED {
+                    if st.position == NOT_QUEUED {
+                        graph.prefetch_ring(w as usize);
+                    }
+                    st.distance = nd;
+                    st.predecessor = v;
+                    heap.push_or_decrease(nd, w, &mut self.state);
+                }
+            }
+        }
+        if max_distance.is_finite() {
+            for (s, label) in self.state.iter_mut().zip(&mut self.label) {
+                if s.distance > max_distance {
+                    s.distance = f64::INFINITY;
+                    s.predecessor = u32::MAX;
+                    *label = u32::MAX;
+                }
             }
         }
     }

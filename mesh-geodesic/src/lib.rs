@@ -5,7 +5,7 @@
 //!
 //! | module | what it holds | chapter / paper |
 //! |---|---|---|
-//! | [`dijkstra`](mod@dijkstra) | multi-source Dijkstra on the edge graph (CSR graph, radix heap), shortest-path tree, edge paths; [`DijkstraGraph`] prepared for repeated queries | 2.6 (upper bound); Ahuja, Mehlhorn, Orlin and Tarjan 1990 |
+//! | [`dijkstra`](mod@dijkstra) | multi-source Dijkstra on the edge graph (CSR graph, indexed 4-ary heap), shortest-path tree, edge paths; [`DijkstraGraph`] prepared for repeated queries | 2.6 (upper bound); Dijkstra 1959 |
 //! | [`exact`] | exact polyhedral distances by window propagation in vertex-oriented triangle order: per-edge window lists, pairwise trimming, the vertex-distance filter, one split per angle | Mitchell, Mount and Papadimitriou 1987; Surazhsky et al. 2005; Xin and Wang 2009; Qin et al. 2016 |
 //! | [`fmm`] | Fast Marching ([`FastMarching`]): eq. 2.33-2.34 plane-wave update, point-source and curved-front updates, obtuse triangles split by unfolding, per-vertex weights P | eq. 2.32-2.34, Kimmel and Sethian 1998 |
 //! | [`heat`] | the heat method ([`HeatGeodesics`]), prefactored, cotangent or intrinsic Delaunay Laplacian, boundary conditions; the whole exponent range of the heat flow, and a far field ([`HeatFarField`]) with per-vertex status ([`HeatStatus`]) beyond it | Crane, Weischedel and Wardetzky 2013 |
@@ -58,7 +58,7 @@ pub mod exact;
 pub mod fmm;
 #[cfg(feature = "heat")]
 pub mod heat;
-mod radix_heap;
+mod indexed_heap;
 pub mod sampling;
 mod support;
 pub mod trace;

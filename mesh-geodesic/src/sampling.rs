@@ -11,7 +11,7 @@
 
 use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
-use crate::dijkstra::{propagate, robust_lengths, ShortestPaths};
+use crate::dijkstra::{robust_lengths, Search};
 use crate::edge_graph::EdgeGraph;
 use crate::error::{GeodesicError, Result};
 use crate::fmm::{FastMarching, FmmOptions, March};
@@ -173,8 +173,8 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
 /// Incremental front propagation for either metric.
 enum Front {
     Fmm(FastMarching, March),
-    /// The edge graph (built once for all samples) and the tree.
-    Dijkstra(EdgeGraph, ShortestPaths),
+    /// The edge graph (built once for all samples) and the search's state.
+    Dijkstra(EdgeGraph, Search),
 }
 
 impl Front {
@@ -183,7 +183,7 @@ impl Front {
         Ok(match options.metric {
             SamplingMetric::FastMarching => Front::Fmm(FastMarching::new(mesh, &options.fmm)?, March::new(n)),
             SamplingMetric::Dijkstra => {
-                Front::Dijkstra(EdgeGraph::new(mesh, robust_lengths(mesh), None), ShortestPaths::unreached(n))
+                Front::Dijkstra(EdgeGraph::new(mesh, robust_lengths(mesh), None), Search::unreached(n))
             }
         })
     }
@@ -214,15 +214,14 @@ impl Front {
 
     /// Lowers `distance` and relabels `region` (in the front's numbering)
     /// where `seed` is closer.
-    fn add(&mut self, seed: VertexId, label: u32, distance: &mut Vec<f64>, region: &mut Vec<u32>) {
+    fn add(&mut self, seed: VertexId, label: u32, distance: &mut [f64], region: &mut [u32]) {
         match self {
             Front::Fmm(fmm, march) => march.run(fmm, &[(seed, label)], f64::INFINITY, distance, region),
-            Front::Dijkstra(graph, tree) => {
-                std::mem::swap(&mut tree.distance, distance);
-                std::mem::swap(&mut tree.source_index, region);
-                propagate(graph, &[(seed, label)], f64::INFINITY, tree);
-                std::mem::swap(&mut tree.distance, distance);
-                std::mem::swap(&mut tree.source_index, region);
+            Front::Dijkstra(graph, search) => {
+                search.propagate(graph, &[(seed, label)], f64::INFINITY);
+                for (i, (d, r)) in distance.iter_mut().zip(region.iter_mut()).enumerate() {
+                    (*d, *r) = (search.distance(i), search.label(i));
+                }
             }
         }
     }

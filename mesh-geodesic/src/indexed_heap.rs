@@ -1,0 +1,184 @@
+//! An indexed 4-ary min-heap of `(distance, vertex)` entries with
+//! decrease-key, for label-setting searches (Dijkstra): every vertex is in
+//! the heap at most once, so no stale entries are popped, and the heap stays
+//! as small as the front.
+//!
+//! Each vertex's position in the heap is kept by the caller beside the
+//! vertex's other search state ([`Positions`]), so that relaxing an edge
+//! touches one cache line of per-vertex data, not two. A node's four
+//! children are consecutive, and a pop compares them with the branch
+//! predictor's help (a branch-free selection measured 10-15% slower).
+//!
+//! Measured against the radix heap on the distances' bits (Ahuja, Mehlhorn,
+//! Orlin and Tarjan 1990) it replaces, single-source Dijkstra on one core:
+//! 0.7x the time at 470,274 vertices in breadth-first order (the radix heap
+//! moved each entry 6 times between its buckets there) and 0.75x on a
+//! 40,962-vertex icosphere.
+
+/// Where the heap keeps each vertex's position: `NOT_QUEUED` before the
+/// vertex enters the heap, `POPPED` after it leaves, else its index in the
+/// heap's entries.
+pub(crate) trait Positions {
+    /// The position of `vertex`.
+    fn position(&self, vertex: u32) -> u32;
+    /// Stores the position of `vertex`.
+    fn set_position(&mut self, vertex: u32, position: u32);
+}
+
+/// Position of a vertex that has not entered the heap.
+pub(crate) const NOT_QUEUED: u32 = u32::MAX;
+/// Position of a vertex that has been popped.
+pub(crate) const POPPED: u32 = u32::MAX - 1;
+
+/// Children per node.
+const ARITY: usize = 4;
+
+/// An indexed 4-ary min-heap; see the module documentation.
+#[derive(Debug, Default)]
+pub(crate) struct IndexedHeap {
+    entries: Vec<(f64, u32)>,
+}
+
+impl IndexedHeap {
+    /// An empty heap.
+    pub(crate) fn new() -> Self {
+        Self::default()
+    }
+
+    /// Puts `vertex` in the heap at `distance`, or lowers its distance if it
+    /// is already there. `distance` must not be NaN nor larger than the
+    /// vertex's distance in the heap (debug-checked); a popped vertex must
+    /// not come back. O(log of the heap's size).
+    #[inline]
+    pub(crate) fn push_or_decrease(&mut self, distance: f64, vertex: u32, positions: &mut impl Positions) {
+        let at = match positions.position(vertex) {
+            NOT_QUEUED => {
+                self.entries.push((distance, vertex));
+                self.entries.len() - 1
+            }
+            p => {
+                debug_assert!(p != POPPED && distance <= self.entries[p as usize].0, "decrease-key of a popped vertex");
+                p as usize
+            }
+        };
+        self.sift_up(at, distance, vertex, positions);
+    }
+
+    /// Removes an entry of smallest distance and marks its vertex `POPPED`.
+    /// O(log of the heap's size).
+    #[inline]
+    pub(crate) fn pop(&mut self, positions: &mut impl Positions) -> Option<(f64, u32)> {
+        let top = *self.entries.first()?;
+        positions.set_position(top.1, POPPED);
+        let last = self.entries.pop()?;
+        if !self.entries.is_empty() {
+            self.sift_down(last, positions);
+        }
+        Some(top)
+    }
+
+    /// Moves the hole at `at` towards the root until `(distance, vertex)`
+    /// fits there.
+    #[inline]
+    fn sift_up(&mut self, mut at: usize, distance: f64, vertex: u32, positions: &mut impl Positions) {
+        while at > 0 {
+            let parent = (at - 1) / ARITY;
+            let above = self.entries[parent];
+            if above.0 <= distance {
+                break;
+            }
+            self.entries[at] = above;
+            positions.set_position(above.1, at as u32);
+            at = parent;
+        }
+        self.entries[at] = (distance, vertex);
+        positions.set_position(vertex, at as u32);
+    }
+
+    /// Moves the hole at the root down until `entry` fits there.
+    #[inline]
+    fn sift_down(&mut self, entry: (f64, u32), positions: &mut impl Positions) {
+        let n = self.entries.len();
+        let mut at = 0;
+        loop {
+            let first = ARITY * at + 1;
+            if first >= n {
+                break;
+            }
+            // The smallest child, its key kept in a register (reloading it
+            // by index chained each comparison to the previous one).
+            let (mut child, mut key) = (first, self.entries[first].0);
+            for c in first + 1..(first + ARITY).min(n) {
+                if self.entries[c].0 < key {
+                    (child, key) = (c, self.entries[c].0);
+                }
+            }
+            if key >= entry.0 {
+                break;
+            }
+            let below = self.entries[child];
+            self.entries[at] = below;
+            positions.set_position(below.1, at as u32);
+            at = child;
+        }
+        self.entries[at] = entry;
+        positions.set_position(entry.1, at as u32);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{IndexedHeap, Positions, NOT_QUEUED, POPPED};
+
+    impl Positions for Vec<u32> {
+        fn position(&self, vertex: u32) -> u32 {
+            self[vertex as usize]
+        }
+        fn set_position(&mut self, vertex: u32, position: u32) {
+            self[vertex as usize] = position;
+        }
+    }
+
+    /// Random pushes, decreases and pops against a plain list of the
+    /// current keys: every pop returns a smallest key and the positions
+    /// always point at the right entries.
+    #[test]
+    fn pops_the_smallest_after_random_pushes_and_decreases() {
+        let mut rng = mesh_kernel::random::SplitMix64::new(11);
+        let n = 300;
+        let mut positions = vec![NOT_QUEUED; n];
+        let mut current: Vec<Option<f64>> = vec![None; n];
+        let mut heap = IndexedHeap::new();
+        let mut floor = 0.0f64;
+        let mut pops = 0;
+        for step in 0..5000 {
+            let v = (rng.unit() * n as f64) as usize % n;
+            if step % 3 == 2 {
+                let Some((d, u)) = heap.pop(&mut positions) else { continue };
+                let smallest = current.iter().flatten().copied().fold(f64::INFINITY, f64::min);
+                assert_eq!(d, smallest);
+                assert_eq!(current[u as usize], Some(d));
+                assert_eq!(positions[u as usize], POPPED);
+                assert!(d >= floor);
+                floor = d;
+                current[u as usize] = None;
+                pops += 1;
+            } else if positions[v] != POPPED {
+                let d = floor + rng.unit() * 10.0;
+                if current[v].is_none_or(|c| d < c) {
+                    heap.push_or_decrease(d, v as u32, &mut positions);
+                    current[v] = Some(d);
+                }
+            }
+            for (i, &(d, u)) in heap.entries.iter().enumerate() {
+                assert_eq!(positions[u as usize], i as u32);
+                assert_eq!(current[u as usize], Some(d));
+            }
+        }
+        assert!(pops > n / 2, "{pops} pops");
+        while let Some((d, _)) = heap.pop(&mut positions) {
+            assert!(d >= floor);
+            floor = d;
+        }
+    }
+}
