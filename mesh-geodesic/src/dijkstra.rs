@@ -17,7 +17,7 @@ use mesh_kernel::{TriMesh, VertexId};
 
 use crate::edge_graph::EdgeGraph;
 use crate::error::{GeodesicError, Result};
-use crate::indexed_heap::{IndexedHeap, Positions, NOT_QUEUED, POPPED};
+use crate::indexed_heap::{IndexedHeap, Positions, NOT_QUEUED};
 use crate::support::{breadth_first_order, validate_source_indices};
 
 /// Options of [`dijkstra`].
@@ -213,9 +213,6 @@ pub(crate) struct Search {
     /// Position in the source list of the nearest source, `u32::MAX` where
     /// unreached; set when a vertex is popped, from its predecessor's.
     label: Vec<u32>,
-    /// `true` once a search ran: the heap positions it left must be reset
-    /// before the next one.
-    searched: bool,
 }
 
 impl Positions for Vec<VertexState> {
@@ -233,7 +230,7 @@ impl Search {
     /// Every one of `vertex_count` vertices unreached. O(V).
     pub(crate) fn unreached(vertex_count: usize) -> Self {
         let state = VertexState { distance: f64::INFINITY, predecessor: u32::MAX, position: NOT_QUEUED };
-        Self { state: vec![state; vertex_count], label: vec![u32::MAX; vertex_count], searched: false }
+        Self { state: vec![state; vertex_count], label: vec![u32::MAX; vertex_count] }
     }
 
     /// Distance of graph vertex `i` to its nearest source so far.
@@ -274,11 +271,6 @@ impl Search {
     /// farther than `max_distance` are left (or put back) unreached.
     pub(crate) fn propagate(&mut self, graph: &EdgeGraph, seeds: &[(VertexId, u32)], max_distance: f64) {
         let mut heap = IndexedHeap::new();
-        if std::mem::replace(&mut self.searched, true) {
-            for s in self.state.iter_mut() {
-                s.position = NOT_QUEUED;
-            }
-        }
         for &(s, label) in seeds {
             let st = &mut self.state[s.idx()];
             if st.distance > 0.0 || self.label[s.idx()] == u32::MAX {
@@ -289,6 +281,7 @@ impl Search {
         }
         while let Some((d, v)) = heap.pop(&mut self.state) {
             if d > max_distance {
+                heap.clear(&mut self.state);
                 break;
             }
             let p = self.state[v as usize].predecessor;
@@ -298,9 +291,9 @@ impl Search {
             for e in graph.ring(v as usize) {
                 let (w, nd) = (e.to, d + e.length);
                 let st = &mut self.state[w as usize];
-                // A popped vertex is never improved (its distance is at most
-                // `d`, and `d + length >= d`); the test keeps it so.
-                if nd < st.distance && st.position != POPPED {
+                // A popped vertex is never improved: its distance is at most
+                // `d`, and `d + length >= d`.
+                if nd < st.distance {
                     if st.position == NOT_QUEUED {
                         graph.prefetch_ring(w as usize);
                     }

@@ -1,7 +1,7 @@
 //! An indexed 4-ary min-heap of `(distance, vertex)` entries with
-//! decrease-key, for label-setting searches (Dijkstra): every vertex is in
-//! the heap at most once, so no stale entries are popped, and the heap stays
-//! as small as the front.
+//! decrease-key, for label-setting searches (Dijkstra, Fast Marching):
+//! every vertex is in the heap at most once, so no stale entries are
+//! popped, and the heap stays as small as the front.
 //!
 //! Each vertex's position in the heap is kept by the caller beside the
 //! vertex's other search state ([`Positions`]), so that relaxing an edge
@@ -15,9 +15,11 @@
 //! moved each entry 6 times between its buckets there) and 0.75x on a
 //! 40,962-vertex icosphere.
 
-/// Where the heap keeps each vertex's position: `NOT_QUEUED` before the
-/// vertex enters the heap, `POPPED` after it leaves, else its index in the
-/// heap's entries.
+/// Where the heap keeps each vertex's position: `NOT_QUEUED` while the
+/// vertex is not in the heap (before it enters and after it leaves), else
+/// its index in the heap's entries. A search marks finished vertices
+/// itself; once a heap is [`IndexedHeap::clear`]ed, every position is
+/// `NOT_QUEUED` again, ready for the next search.
 pub(crate) trait Positions {
     /// The position of `vertex`.
     fn position(&self, vertex: u32) -> u32;
@@ -25,10 +27,20 @@ pub(crate) trait Positions {
     fn set_position(&mut self, vertex: u32, position: u32);
 }
 
-/// Position of a vertex that has not entered the heap.
+/// Positions in an array of their own.
+impl Positions for Vec<u32> {
+    #[inline]
+    fn position(&self, vertex: u32) -> u32 {
+        self[vertex as usize]
+    }
+    #[inline]
+    fn set_position(&mut self, vertex: u32, position: u32) {
+        self[vertex as usize] = position;
+    }
+}
+
+/// Position of a vertex that is not in the heap.
 pub(crate) const NOT_QUEUED: u32 = u32::MAX;
-/// Position of a vertex that has been popped.
-pub(crate) const POPPED: u32 = u32::MAX - 1;
 
 /// Children per node.
 const ARITY: usize = 4;
@@ -47,8 +59,8 @@ impl IndexedHeap {
 
     /// Puts `vertex` in the heap at `distance`, or lowers its distance if it
     /// is already there. `distance` must not be NaN nor larger than the
-    /// vertex's distance in the heap (debug-checked); a popped vertex must
-    /// not come back. O(log of the heap's size).
+    /// vertex's distance in the heap (debug-checked). O(log of the heap's
+    /// size).
     #[inline]
     pub(crate) fn push_or_decrease(&mut self, distance: f64, vertex: u32, positions: &mut impl Positions) {
         let at = match positions.position(vertex) {
@@ -57,24 +69,32 @@ impl IndexedHeap {
                 self.entries.len() - 1
             }
             p => {
-                debug_assert!(p != POPPED && distance <= self.entries[p as usize].0, "decrease-key of a popped vertex");
+                debug_assert!(distance <= self.entries[p as usize].0, "decrease-key that increases");
                 p as usize
             }
         };
         self.sift_up(at, distance, vertex, positions);
     }
 
-    /// Removes an entry of smallest distance and marks its vertex `POPPED`.
-    /// O(log of the heap's size).
+    /// Removes an entry of smallest distance. O(log of the heap's size).
     #[inline]
     pub(crate) fn pop(&mut self, positions: &mut impl Positions) -> Option<(f64, u32)> {
         let top = *self.entries.first()?;
-        positions.set_position(top.1, POPPED);
+        positions.set_position(top.1, NOT_QUEUED);
         let last = self.entries.pop()?;
         if !self.entries.is_empty() {
             self.sift_down(last, positions);
         }
         Some(top)
+    }
+
+    /// Empties the heap, its vertices' positions back to `NOT_QUEUED`.
+    /// O(size).
+    pub(crate) fn clear(&mut self, positions: &mut impl Positions) {
+        for &(_, v) in &self.entries {
+            positions.set_position(v, NOT_QUEUED);
+        }
+        self.entries.clear();
     }
 
     /// Moves the hole at `at` towards the root until `(distance, vertex)`
@@ -128,16 +148,7 @@ impl IndexedHeap {
 
 #[cfg(test)]
 mod tests {
-    use super::{IndexedHeap, Positions, NOT_QUEUED, POPPED};
-
-    impl Positions for Vec<u32> {
-        fn position(&self, vertex: u32) -> u32 {
-            self[vertex as usize]
-        }
-        fn set_position(&mut self, vertex: u32, position: u32) {
-            self[vertex as usize] = position;
-        }
-    }
+    use super::{IndexedHeap, NOT_QUEUED};
 
     /// Random pushes, decreases and pops against a plain list of the
     /// current keys: every pop returns a smallest key and the positions
@@ -147,6 +158,7 @@ mod tests {
         let mut rng = mesh_kernel::random::SplitMix64::new(11);
         let n = 300;
         let mut positions = vec![NOT_QUEUED; n];
+        let mut popped = vec![false; n];
         let mut current: Vec<Option<f64>> = vec![None; n];
         let mut heap = IndexedHeap::new();
         let mut floor = 0.0f64;
@@ -158,12 +170,13 @@ mod tests {
                 let smallest = current.iter().flatten().copied().fold(f64::INFINITY, f64::min);
                 assert_eq!(d, smallest);
                 assert_eq!(current[u as usize], Some(d));
-                assert_eq!(positions[u as usize], POPPED);
+                assert_eq!(positions[u as usize], NOT_QUEUED);
+                popped[u as usize] = true;
                 assert!(d >= floor);
                 floor = d;
                 current[u as usize] = None;
                 pops += 1;
-            } else if positions[v] != POPPED {
+            } else if !popped[v] {
                 let d = floor + rng.unit() * 10.0;
                 if current[v].is_none_or(|c| d < c) {
                     heap.push_or_decrease(d, v as u32, &mut positions);
@@ -176,9 +189,11 @@ mod tests {
             }
         }
         assert!(pops > n / 2, "{pops} pops");
-        while let Some((d, _)) = heap.pop(&mut positions) {
-            assert!(d >= floor);
-            floor = d;
+        for _ in 0..10 {
+            heap.pop(&mut positions);
         }
+        heap.clear(&mut positions);
+        assert!(heap.pop(&mut positions).is_none());
+        assert!(positions.iter().all(|&p| p == NOT_QUEUED));
     }
 }
