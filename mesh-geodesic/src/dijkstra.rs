@@ -159,7 +159,7 @@ impl DijkstraGraph {
 
     /// The shortest edge paths from `sources`: the same distances, bit for
     /// bit, as [`dijkstra`] on the mesh (ties between equally short paths
-    /// may pick another predecessor). O(V + E).
+    /// may pick another predecessor). O((V + E) log V).
     ///
     /// # Errors
     /// As [`dijkstra`].
@@ -193,9 +193,10 @@ pub(crate) fn robust_lengths(mesh: &TriMesh) -> bool {
     !(2f64.powi(-100)..=2f64.powi(100)).contains(&mesh_kernel::units::length_unit(mesh))
 }
 
-/// A vertex's state in a search: 16 bytes, one cache line for the three
-/// things an edge relaxation reads or writes.
+/// A vertex's state in a search: 16 bytes, aligned so that the three
+/// things an edge relaxation reads or writes share one cache line.
 #[derive(Debug, Clone, Copy)]
+#[repr(C, align(16))]
 struct VertexState {
     distance: f64,
     /// The previous vertex on a shortest path (graph numbering), or
@@ -311,6 +312,51 @@ impl Search {
                     *label = u32::MAX;
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{EdgeGraph, Search, NOT_QUEUED};
+    use mesh_kernel::{shapes, VertexId};
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+
+    /// A search cut off at a distance leaves a clean heap, and a second
+    /// search on top of it lowers exactly what a plain Dijkstra started
+    /// from the first one's field lowers (a vertex is passed on only where
+    /// the new distance is strictly smaller).
+    #[test]
+    fn a_search_after_a_cut_off_one_sees_a_clean_heap() {
+        let mesh = shapes::icosphere(3).unwrap();
+        let (n, graph) = (mesh.vertex_count(), EdgeGraph::new(&mesh, false, None));
+        let mut search = Search::unreached(n);
+        search.propagate(&graph, &[(VertexId(0), 0)], 0.3);
+        assert!(search.state.iter().all(|s| s.position == NOT_QUEUED));
+        let first: Vec<f64> = (0..n).map(|v| search.distance(v)).collect();
+        assert!(first.iter().any(|d| d.is_infinite()) && first.iter().filter(|d| d.is_finite()).count() > 10);
+        search.propagate(&graph, &[(VertexId(5), 1)], f64::INFINITY);
+        // The reference: a binary-heap Dijkstra from vertex 5 over `first`.
+        let (mut expected, mut label) = (first.clone(), vec![0u32; n]);
+        let mut heap = BinaryHeap::from([Reverse((0f64.to_bits(), 5u32))]);
+        (expected[5], label[5]) = (0.0, 1);
+        while let Some(Reverse((bits, v))) = heap.pop() {
+            let d = f64::from_bits(bits);
+            if d > expected[v as usize] {
+                continue;
+            }
+            for e in graph.ring(v as usize) {
+                let nd = d + e.length;
+                if nd < expected[e.to as usize] {
+                    (expected[e.to as usize], label[e.to as usize]) = (nd, 1);
+                    heap.push(Reverse((nd.to_bits(), e.to)));
+                }
+            }
+        }
+        for v in 0..n {
+            let reached = if expected[v].is_finite() { label[v] } else { u32::MAX };
+            assert_eq!((search.distance(v), search.label(v)), (expected[v], reached), "vertex {v}");
         }
     }
 }

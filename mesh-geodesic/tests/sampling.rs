@@ -44,6 +44,13 @@ fn incremental_sampling_matches_a_fresh_computation() {
     let fps = farthest_point_sampling(&mesh, 15, &metric(SamplingMetric::Dijkstra)).unwrap();
     let fresh = dijkstra(&mesh, &fps.seeds, &Default::default()).unwrap();
     assert_eq!(fps.distance, fresh.distance);
+    // Each vertex's region is a seed at its distance (labels set by the
+    // incremental searches).
+    let single: Vec<Vec<f64>> =
+        fps.seeds.iter().map(|s| dijkstra(&mesh, &[*s], &Default::default()).unwrap().distance).collect();
+    for v in 0..mesh.vertex_count() {
+        assert_eq!(single[fps.region[v] as usize][v], fps.distance[v], "vertex {v}");
+    }
     // Each sample was the farthest point: its distance to the earlier ones
     // is the previous covering radius.
     for i in 1..fps.seeds.len() {

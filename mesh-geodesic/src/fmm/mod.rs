@@ -302,7 +302,8 @@ pub fn fmm_distance(mesh: &TriMesh, sources: &[VertexId], options: &FmmOptions) 
 /// sampling): a vertex is accepted in run `r` when `stamp[v] == r`; `kappa`
 /// holds the geodesic curvature of the front at each vertex. The trial
 /// vertices are in an indexed heap with decrease-key (each at most once;
-/// 1.3x faster marches than a binary heap with stale entries, at 41k and 470k vertices),
+/// marches 1.2-1.5x faster than on a binary heap with stale entries, at 41k
+/// and 470k vertices),
 /// their positions in `position`.
 pub(crate) struct March {
     stamp: Vec<u32>,
@@ -371,6 +372,7 @@ impl March {
 
     /// A new run number (every vertex unaccepted).
     fn next_run(&mut self) {
+        debug_assert!(self.heap.is_empty(), "a march left vertices in its heap");
         self.run = self.run.wrapping_add(1);
         if self.run == 0 {
             self.stamp.iter_mut().for_each(|s| *s = u32::MAX);
