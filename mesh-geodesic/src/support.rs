@@ -1,6 +1,5 @@
-//! Small shared pieces: input validation and the min-heap entry used by the
-//! front-propagation algorithms.
-
+//! Small shared pieces: input validation, the breadth-first vertex order
+//! and the min-heap entry of the exact algorithm's vertex queue.
 use std::cmp::Ordering;
 
 use mesh_kernel::{Connectivity, TriMesh, VertexId, VertexKind};

@@ -301,10 +301,10 @@ pub fn fmm_distance(mesh: &TriMesh, sources: &[VertexId], options: &FmmOptions) 
 /// The state of a march, reusable across incremental runs (farthest-point
 /// sampling): a vertex is accepted in run `r` when `stamp[v] == r`; `kappa`
 /// holds the geodesic curvature of the front at each vertex. The trial
-/// vertices are in an indexed heap with decrease-key (each at most once;
-/// marches 1.2-1.5x faster than on a binary heap with stale entries, at 41k
-/// and 470k vertices),
-/// their positions in `position`.
+/// vertices are in an indexed heap with decrease-key, their positions in
+/// `position` (each vertex in the heap at most once: marches 1.2-1.5x
+/// faster than on a binary heap with stale entries, at 41k and 470k
+/// vertices).
 pub(crate) struct March {
     stamp: Vec<u32>,
     run: u32,
