@@ -1,5 +1,6 @@
 //! Small shared pieces: input validation, the breadth-first vertex order
 //! and the min-heap entry of the exact algorithm's vertex queue.
+
 use std::cmp::Ordering;
 
 use mesh_kernel::{Connectivity, TriMesh, VertexId, VertexKind};
