@@ -9,6 +9,7 @@ use glam::DVec3;
 use crate::connectivity::Connectivity;
 use crate::error::{MeshError, Result};
 use crate::ids::{FaceId, VertexId};
+use crate::par;
 
 /// A triangle mesh: `f64` positions and counter-clockwise triangles.
 ///
@@ -29,6 +30,36 @@ pub struct TriMesh {
     geometry: Cache,
 }
 
+/// Whether every triangle's corners are below `n` and distinct: two
+/// reductions without a branch, the largest corner and the smallest XOR
+/// of two corners of a triangle (zero exactly when they are equal).
+fn valid_triangles(faces: &[[u32; 3]], n: usize) -> bool {
+    let (largest, differ) = faces.iter().fold((0u32, u32::MAX), |(hi, lo), &[a, b, c]| {
+        (hi.max(a.max(b).max(c)), lo.min((a ^ b).min(a ^ c).min(b ^ c)))
+    });
+    (largest as usize) < n && differ != 0
+}
+
+/// The error for the first triangle with a corner out of range or
+/// repeated, if any.
+fn check_triangles(faces: &[[u32; 3]], n: usize) -> Result<()> {
+    for (f, tri) in faces.iter().enumerate() {
+        for &v in tri {
+            if v as usize >= n {
+                return Err(MeshError::IndexOutOfRange { face: FaceId::new(f), vertex: v, vertex_count: n });
+            }
+        }
+        let [a, b, c] = *tri;
+        if a == b || a == c {
+            return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(a) });
+        }
+        if b == c {
+            return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(b) });
+        }
+    }
+    Ok(())
+}
+
 impl TriMesh {
     /// Builds a mesh after checking that every index is in range, every
     /// coordinate finite and no triangle repeats a vertex. Cost O(V + F).
@@ -45,24 +76,17 @@ impl TriMesh {
         if faces.len() >= (u32::MAX / 3) as usize {
             return Err(MeshError::TooLarge { what: "face", count: faces.len() });
         }
-        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
-            let p = positions[v];
-            return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
+        // A branch-free scan in parallel first; the loops that name the
+        // first offender run only when it finds one.
+        if !par::all_chunks(&positions, |chunk| chunk.iter().fold(true, |ok, p| ok & p.is_finite())) {
+            if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+                let p = positions[v];
+                return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
+            }
         }
         let n = positions.len();
-        for (f, tri) in faces.iter().enumerate() {
-            for &v in tri {
-                if v as usize >= n {
-                    return Err(MeshError::IndexOutOfRange { face: FaceId::new(f), vertex: v, vertex_count: n });
-                }
-            }
-            let [a, b, c] = *tri;
-            if a == b || a == c {
-                return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(a) });
-            }
-            if b == c {
-                return Err(MeshError::RepeatedVertex { face: FaceId::new(f), vertex: VertexId(b) });
-            }
+        if !par::all_chunks(&faces, |chunk| valid_triangles(chunk, n)) {
+            check_triangles(&faces, n)?;
         }
         Ok(Self { positions, faces, connectivity: OnceLock::new(), geometry: Cache::default() })
     }
@@ -242,6 +266,36 @@ mod tests {
         assert!(matches!(
             TriMesh::new(p, vec![[0, 1, 2]]),
             Err(MeshError::NonFinitePosition { vertex: VertexId(2), .. })
+        ));
+    }
+
+    #[test]
+    fn large_meshes_name_the_first_offender() {
+        // Past the parallel scans' threshold and chunk: the error names the
+        // first bad element, whichever chunk a thread checks first.
+        let grid = crate::shapes::grid(1.0, 1.0, 200, 200).unwrap();
+        let (p, f) = (grid.positions().to_vec(), grid.faces().to_vec());
+        let n = p.len() as u32;
+        let with = |edits: &[(usize, [u32; 3])]| {
+            let mut faces = f.clone();
+            for &(i, tri) in edits {
+                faces[i] = tri;
+            }
+            TriMesh::new(p.clone(), faces)
+        };
+        assert!(with(&[]).is_ok());
+        let e = with(&[(70_000, [0, 1, 1]), (30_000, [5, n, 6]), (50_000, [2, 2, 3])]).unwrap_err();
+        assert_eq!(e, MeshError::IndexOutOfRange { face: FaceId(30_000), vertex: n, vertex_count: n as usize });
+        let e = with(&[(79_999, [0, 1, n + 7]), (40_000, [9, 8, 9])]).unwrap_err();
+        assert_eq!(e, MeshError::RepeatedVertex { face: FaceId(40_000), vertex: VertexId(9) });
+        let e = with(&[(17, [4, 3, 3])]).unwrap_err();
+        assert_eq!(e, MeshError::RepeatedVertex { face: FaceId(17), vertex: VertexId(3) });
+        let mut q = p.clone();
+        q[39_000].y = f64::INFINITY;
+        q[25_000].x = f64::NAN;
+        assert!(matches!(
+            TriMesh::new(q, f.clone()),
+            Err(MeshError::NonFinitePosition { vertex: VertexId(25_000), .. })
         ));
     }
 

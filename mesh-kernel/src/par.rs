@@ -457,6 +457,21 @@ pub fn map_with<T: Send, S>(
     (0..n).map(|i| f(&mut scratch, i)).collect()
 }
 
+/// Items per chunk of [`all_chunks`].
+const CHECK_CHUNK: usize = 1 << 14;
+
+/// Whether `test` holds for every chunk of `items` (consecutive runs of up
+/// to 16,384 items), in parallel from [`PARALLEL_FROM`] items; it may stop
+/// at the first chunk that fails. For branch-free validity scans.
+pub fn all_chunks<T: Sync>(items: &[T], test: impl Fn(&[T]) -> bool + Sync + Send) -> bool {
+    #[cfg(feature = "rayon")]
+    if items.len() >= PARALLEL_FROM {
+        use rayon::prelude::*;
+        return items.par_chunks(CHECK_CHUNK).all(test);
+    }
+    items.chunks(CHECK_CHUNK).all(test)
+}
+
 /// Runs both closures, in parallel with the `rayon` feature.
 pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
     #[cfg(feature = "rayon")]
