@@ -602,9 +602,12 @@ mod tests {
         ];
         let mut rng = crate::random::SplitMix64::new(11);
         let mut vectors: Vec<DVec3> = (0..10_003)
-            .map(|i| match i % 4 == 3 && i < 200 {
-                true => extreme[i % extreme.len()],
-                false => DVec3::new(rng.signed(), rng.signed(), rng.signed()) * 10f64.powf(40.0 * rng.signed()),
+            .map(|i| {
+                if i % 4 == 3 && i < 200 {
+                    extreme[i % extreme.len()]
+                } else {
+                    DVec3::new(rng.signed(), rng.signed(), rng.signed()) * 10f64.powf(40.0 * rng.signed())
+                }
             })
             .collect();
         let expected: Vec<DVec3> = vectors.iter().map(|&v| unit_vector(v)).collect();
