@@ -532,7 +532,8 @@ pub fn bounding_box(mesh: &TriMesh) -> Option<Aabb> {
 pub fn surface_area(mesh: &TriMesh) -> f64 {
     let unit = crate::units::length_unit(mesh);
     let p = mesh.positions();
-    let sum: f64 = mesh.faces().iter().map(|t| triangle_area(t.map(|v| p[v as usize] / unit))).sum();
+    // A fold from +0: `sum` starts at -0, which a mesh without faces would show.
+    let sum = mesh.faces().iter().map(|t| triangle_area(t.map(|v| p[v as usize] / unit))).fold(0.0, |s, a| s + a);
     sum * unit * unit
 }
 
@@ -543,14 +544,14 @@ pub fn surface_area(mesh: &TriMesh) -> f64 {
 pub fn enclosed_volume(mesh: &TriMesh) -> f64 {
     let unit = crate::units::length_unit(mesh);
     let p = mesh.positions();
-    let sum: f64 = mesh
+    let sum = mesh
         .faces()
         .iter()
         .map(|t| {
             let [a, b, c] = t.map(|v| p[v as usize] / unit);
             a.dot(b.cross(c))
         })
-        .sum();
+        .fold(0.0, |s, x| s + x);
     sum / 6.0 * unit * unit * unit
 }
 
@@ -616,6 +617,13 @@ mod tests {
         for (i, (ours, theirs)) in vectors.iter().zip(&expected).enumerate() {
             assert_eq!(bits(ours), bits(theirs), "vector {i}");
         }
+    }
+
+    #[test]
+    fn a_mesh_without_faces_has_positive_zero_area_and_volume() {
+        let m = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], Vec::new()).unwrap();
+        assert_eq!(surface_area(&m).to_bits(), 0.0f64.to_bits());
+        assert_eq!(enclosed_volume(&m).to_bits(), 0.0f64.to_bits());
     }
 
     #[test]
