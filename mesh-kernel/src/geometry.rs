@@ -22,7 +22,7 @@ use crate::par;
 #[inline]
 pub fn norm(v: DVec3) -> f64 {
     let m = v.abs().max_element();
-    if m > 1e-150 && m < 1e150 {
+    if squares_are_safe(m) {
         return v.length();
     }
     if m == 0.0 || !m.is_finite() {
@@ -32,12 +32,19 @@ pub fn norm(v: DVec3) -> f64 {
     (v / unit).length() * unit
 }
 
+/// Whether a vector whose largest absolute component is `m` has squares
+/// that neither overflow nor underflow: `m` in `(1e-150, 1e150)`.
+#[inline(always)]
+fn squares_are_safe(m: f64) -> bool {
+    m > 1e-150 && m < 1e150
+}
+
 /// `v / |v|` computed without overflow or underflow (see [`norm`]), or zero
 /// when `v` is zero or not finite.
 #[inline(always)]
 pub fn unit_vector(v: DVec3) -> DVec3 {
     let m = v.abs().max_element();
-    if m > 1e-150 && m < 1e150 {
+    if squares_are_safe(m) {
         return v.normalize_or_zero();
     }
     if m == 0.0 || !m.is_finite() {
@@ -62,11 +69,7 @@ pub fn unit_vectors_in_place(vectors: &mut [DVec3]) {
 /// (the length is finite and nonzero), without its checks.
 #[inline(always)]
 fn unit_vectors(q: [DVec3; 4]) -> [DVec3; 4] {
-    let plain = |v: &DVec3| {
-        let m = v.abs().max_element();
-        m > 1e-150 && m < 1e150
-    };
-    if !q.iter().all(plain) {
+    if !q.iter().all(|v| squares_are_safe(v.abs().max_element())) {
         return q.map(unit_vector);
     }
     let inverse = q.map(|v| 1.0 / v.length_squared().sqrt());

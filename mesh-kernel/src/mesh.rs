@@ -40,6 +40,21 @@ fn valid_triangles(faces: &[[u32; 3]], n: usize) -> bool {
     (largest as usize) < n && differ != 0
 }
 
+/// The error for the first vertex with a NaN or infinite coordinate, if
+/// any: a branch-free scan in parallel, then the search that names it.
+fn check_positions(positions: &[DVec3]) -> Result<()> {
+    if par::all_chunks(positions, |chunk| chunk.iter().fold(true, |ok, p| ok & p.is_finite())) {
+        return Ok(());
+    }
+    match positions.iter().position(|p| !p.is_finite()) {
+        Some(v) => {
+            let p = positions[v];
+            Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z })
+        }
+        None => Ok(()),
+    }
+}
+
 /// The error for the first triangle with a corner out of range or
 /// repeated, if any.
 fn check_triangles(faces: &[[u32; 3]], n: usize) -> Result<()> {
@@ -76,14 +91,9 @@ impl TriMesh {
         if faces.len() >= (u32::MAX / 3) as usize {
             return Err(MeshError::TooLarge { what: "face", count: faces.len() });
         }
-        // A branch-free scan in parallel first; the loops that name the
-        // first offender run only when it finds one.
-        if !par::all_chunks(&positions, |chunk| chunk.iter().fold(true, |ok, p| ok & p.is_finite())) {
-            if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
-                let p = positions[v];
-                return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
-            }
-        }
+        // Branch-free scans in parallel first; the loops that name the
+        // first offender run only when one finds it.
+        check_positions(&positions)?;
         let n = positions.len();
         if !par::all_chunks(&faces, |chunk| valid_triangles(chunk, n)) {
             check_triangles(&faces, n)?;
@@ -137,10 +147,7 @@ impl TriMesh {
                 self.positions.len()
             )));
         }
-        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
-            let p = positions[v];
-            return Err(MeshError::NonFinitePosition { vertex: VertexId::new(v), x: p.x, y: p.y, z: p.z });
-        }
+        check_positions(&positions)?;
         self.positions = positions;
         self.geometry = Cache::default();
         Ok(())
