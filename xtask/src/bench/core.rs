@@ -28,6 +28,42 @@ fn stream_copy() -> Operation<'static> {
     .moving(16 * STREAM_LEN)
 }
 
+/// Multiply-adds of [`multiply_add`], split between the threads of the pool.
+const MULTIPLY_ADDS: usize = 1 << 28;
+
+/// Independent chains `x = x m + a` that [`multiply_add`] runs side by
+/// side: 12 SSE2 registers (the x86-64 baseline), enough to hide the
+/// latency of a multiply and an add on the processors measured.
+const CHAINS: usize = 24;
+
+/// The machine's arithmetic throughput with no memory traffic: each thread
+/// of the pool runs its share of [`MULTIPLY_ADDS`] in registers (one
+/// [`rayon::broadcast`] call). Next to `stream_copy`, it says what a
+/// second thread can add at the time of the run to work bound by
+/// arithmetic: on a VM whose vCPUs share a physical core's floating-point
+/// units with each other or with other guests, much less than 2x, and
+/// varying from run to run.
+fn multiply_add() -> Operation<'static> {
+    Operation::new("multiply_add", || {
+        let rounds = MULTIPLY_ADDS / CHAINS / rayon::current_num_threads();
+        Ok(rayon::broadcast(|_| chains(rounds)).iter().sum::<f64>())
+    })
+}
+
+/// [`CHAINS`] chains of `rounds` multiply-adds each; their sum.
+fn chains(rounds: usize) -> f64 {
+    let (m, a) = (std::hint::black_box(0.999_999), std::hint::black_box(1e-9));
+    let mut x = [[1.0f64; 4]; CHAINS / 4];
+    for _ in 0..rounds {
+        for quad in &mut x {
+            for v in quad {
+                *v = *v * m + a;
+            }
+        }
+    }
+    x.iter().flatten().sum()
+}
+
 /// The least traffic of a per-face operation writing `per_vertex` bytes per
 /// vertex: faces (12 bytes) and positions (24 bytes) read once.
 pub fn face_pass_bytes(mesh: &TriMesh, per_vertex: usize) -> usize {
@@ -46,6 +82,7 @@ pub fn operations<'a>(path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> 
     let halfedges = 12 * mesh.face_count() + 24 * mesh.face_count() + 4 * n;
     vec![
         stream_copy(),
+        multiply_add(),
         Operation::new("read", move || Ok(mesh_io::read(path)?)),
         Operation::on_fresh("connectivity", mesh, |m| {
             let _ = m.connectivity().is_manifold();
