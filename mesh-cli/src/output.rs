@@ -80,18 +80,37 @@ pub fn write_mesh<'a>(
     Ok(report)
 }
 
-/// Prints a value as pretty JSON on standard output.
+/// Prints a value as pretty JSON on standard output ([`json_text`]).
 pub fn print_json<T: Serialize>(value: &T) -> CliResult<()> {
-    println!("{}", serde_json::to_string_pretty(value)?);
+    println!("{}", json_text(value, true)?);
     Ok(())
 }
 
-/// Writes a value as pretty JSON to a file, atomically.
+/// Writes a value as pretty JSON to a file, atomically ([`json_text`]).
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> CliResult<()> {
     check_folder(path)?;
-    let text = serde_json::to_string_pretty(value)?;
+    let text = json_text(value, true)?;
     mesh_io::write_atomic(path, |w| w.write_all(text.as_bytes()).map_err(|e| mesh_io::IoError::io(path, e)))?;
     Ok(())
+}
+
+/// The JSON text of a value, pretty or on one line, with every `-0.0`
+/// written `0.0`: Rust's sum of no `f64` is `-0.0`, as are some products
+/// on flat surfaces, and the sign of a zero means nothing in a report.
+pub fn json_text<T: Serialize>(value: &T, pretty: bool) -> CliResult<String> {
+    let mut value = serde_json::to_value(value)?;
+    unsign_zeros(&mut value);
+    Ok(if pretty { serde_json::to_string_pretty(&value)? } else { serde_json::to_string(&value)? })
+}
+
+fn unsign_zeros(value: &mut serde_json::Value) {
+    use serde_json::Value;
+    match value {
+        Value::Number(n) if n.is_f64() && n.as_f64() == Some(0.0) => *value = Value::from(0.0),
+        Value::Array(items) => items.iter_mut().for_each(unsign_zeros),
+        Value::Object(fields) => fields.values_mut().for_each(unsign_zeros),
+        _ => {}
+    }
 }
 
 /// Write options of every per-vertex field file: binary little-endian PLY
@@ -120,4 +139,21 @@ pub fn stats(values: &[f64], keep: impl Fn(usize) -> bool) -> serde_json::Value 
     let min = kept.iter().copied().fold(f64::INFINITY, f64::min);
     let max = kept.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     serde_json::json!({ "min": min, "max": max, "mean": kept.iter().sum::<f64>() / kept.len() as f64, "count": kept.len() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::json_text;
+
+    #[test]
+    fn json_text_writes_no_negative_zero() {
+        let value = serde_json::json!({"sum": -0.0, "stats": [-0.0, 0.0, -1.5, 2], "nested": {"k2": -0.0}});
+        for pretty in [false, true] {
+            let text = json_text(&value, pretty).unwrap();
+            assert!(!text.contains("-0.0") && text.contains("-1.5"), "{text}");
+            let back: serde_json::Value = serde_json::from_str(&text).unwrap();
+            assert_eq!(back["stats"][0].as_f64().map(f64::is_sign_positive), Some(true));
+            assert_eq!(back["stats"][3], 2);
+        }
+    }
 }

@@ -285,7 +285,8 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
         zero_area_charts: charts.iter().filter(|c| c.zero_area).count(),
         distortion: summarize(&all_faces, charts.iter().all(|c| c.distortion.boundary_simple)),
         collapsed_zero_area_faces: all_faces.iter().filter(|d| d.collapsed && d.degenerate).count(),
-        coverage: all_faces.iter().map(|d| d.uv_signed_area.abs()).sum(),
+        // From +0: Rust's sum of nothing is -0.
+        coverage: all_faces.iter().map(|d| d.uv_signed_area.abs()).fold(0.0, |a, b| a + b),
     };
     Ok(Atlas { corner_uvs, face_chart, charts, scale: packing.scale, margin: packing.margin, summary })
 }

@@ -168,7 +168,7 @@ pub fn run(args: &Args) -> CliResult<()> {
     });
     let json_path = args.out.join("report.json");
     write_json(&json_path, &summary)?;
-    println!("{}", serde_json::to_string_pretty(&summary)?);
+    println!("{}", crate::output::json_text(&summary, true)?);
     eprintln!("wrote {} and {} files in {}", json_path.display(), report.files.len(), args.out.display());
     Ok(())
 }

@@ -298,7 +298,7 @@ impl Lines {
 
     /// Appends one value as a line.
     fn append(&self, record: &Value) -> CliResult<()> {
-        let mut line = serde_json::to_string(record)?;
+        let mut line = crate::output::json_text(record, false)?;
         line.push('\n');
         let mut file = self.file.lock().map_err(|_| "the journal lock is poisoned")?;
         file.write_all(line.as_bytes())
