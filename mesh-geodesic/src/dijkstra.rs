@@ -110,7 +110,7 @@ pub fn dijkstra(mesh: &TriMesh, sources: &[VertexId], options: &DijkstraOptions)
     let seeds = validate(mesh.vertex_count(), sources, options)?;
     let graph = EdgeGraph::new(mesh, robust_lengths(mesh), None);
     let mut search = Search::unreached(mesh.vertex_count());
-    search.propagate(&graph, &seeds, options.max_distance);
+    search.propagate(&graph, &seeds, options.max_distance, |_| {});
     Ok(search.into_paths(None))
 }
 
@@ -167,7 +167,7 @@ impl DijkstraGraph {
         let seeds = validate(self.vertex_count(), sources, options)?;
         let seeds: Vec<(VertexId, u32)> = seeds.iter().map(|&(s, l)| (VertexId(self.rank[s.idx()]), l)).collect();
         let mut search = Search::unreached(self.vertex_count());
-        search.propagate(&self.graph, &seeds, options.max_distance);
+        search.propagate(&self.graph, &seeds, options.max_distance, |_| {});
         Ok(search.into_paths(Some(&self.order)))
     }
 }
@@ -270,7 +270,15 @@ impl Search {
     /// distance is the smallest `d(u) + |uw|` over its neighbours, each sum
     /// rounded once, whatever the heap's order among equal keys. Vertices
     /// farther than `max_distance` are left (or put back) unreached.
-    pub(crate) fn propagate(&mut self, graph: &EdgeGraph, seeds: &[(VertexId, u32)], max_distance: f64) {
+    /// `on_settle` sees every vertex popped: with an infinite
+    /// `max_distance`, the only ones whose distance this call lowers.
+    pub(crate) fn propagate(
+        &mut self,
+        graph: &EdgeGraph,
+        seeds: &[(VertexId, u32)],
+        max_distance: f64,
+        mut on_settle: impl FnMut(u32),
+    ) {
         let mut heap = IndexedHeap::new();
         for &(s, label) in seeds {
             let st = &mut self.state[s.idx()];
@@ -289,6 +297,7 @@ impl Search {
             if p != u32::MAX {
                 self.label[v as usize] = self.label[p as usize];
             }
+            on_settle(v);
             for e in graph.ring(v as usize) {
                 let (w, nd) = (e.to, d + e.length);
                 let st = &mut self.state[w as usize];
@@ -332,11 +341,11 @@ mod tests {
         let mesh = shapes::icosphere(3).unwrap();
         let (n, graph) = (mesh.vertex_count(), EdgeGraph::new(&mesh, false, None));
         let mut search = Search::unreached(n);
-        search.propagate(&graph, &[(VertexId(0), 0)], 0.3);
+        search.propagate(&graph, &[(VertexId(0), 0)], 0.3, |_| {});
         assert!(search.state.iter().all(|s| s.position == NOT_QUEUED));
         let first: Vec<f64> = (0..n).map(|v| search.distance(v)).collect();
         assert!(first.iter().any(|d| d.is_infinite()) && first.iter().filter(|d| d.is_finite()).count() > 10);
-        search.propagate(&graph, &[(VertexId(5), 1)], f64::INFINITY);
+        search.propagate(&graph, &[(VertexId(5), 1)], f64::INFINITY, |_| {});
         // The reference: a binary-heap Dijkstra from vertex 5 over `first`.
         let (mut expected, mut label) = (first.clone(), vec![0u32; n]);
         let mut heap = BinaryHeap::from([Reverse((0f64.to_bits(), 5u32))]);

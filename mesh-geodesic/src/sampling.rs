@@ -6,8 +6,9 @@
 //! from all samples so far. The distance to the sample set is kept up to
 //! date incrementally: each new sample's front only travels where it is
 //! closer than the samples already placed (on a surface, about V / k
-//! vertices for the k-th sample), plus an O(V) scan for the next farthest
-//! vertex.
+//! vertices for the k-th sample), and the next farthest vertex comes from
+//! a tournament tree updated at those vertices (O(log V) each) instead of
+//! a scan of all V.
 
 use mesh_kernel::{TriMesh, VertexId, VertexKind};
 
@@ -144,16 +145,18 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
     let mut front = Front::new(mesh, options)?;
     // Fields in the front's own vertex numbering.
     let (mut distance, mut region) = (vec![f64::INFINITY; n], vec![u32::MAX; n]);
-    let usable = front.to_internal(&usable);
+    let mut farthest = Farthest::new(&front.to_internal(&usable), &distance);
     let (mut seeds, mut radii) = (Vec::with_capacity(count), Vec::with_capacity(count));
+    let mut lowered = Vec::new();
     let mut next = Some(start);
     while let Some(seed) = next {
         let label = seeds.len() as u32;
         seeds.push(seed);
-        front.add(seed, label, &mut distance, &mut region);
+        lowered.clear();
+        front.add(seed, label, &mut distance, &mut region, &mut lowered);
+        farthest.lowered(&lowered, &distance);
         // The farthest usable vertex; unreached components first.
-        let farthest =
-            (0..n).filter(|&v| usable[v]).max_by(|&a, &b| distance[a].total_cmp(&distance[b]).then(b.cmp(&a)));
+        let farthest = farthest.vertex();
         let radius = farthest.map_or(0.0, |v| distance[v] * front.unit());
         radii.push(radius);
         next = match farthest {
@@ -213,16 +216,126 @@ impl Front {
     }
 
     /// Lowers `distance` and relabels `region` (in the front's numbering)
-    /// where `seed` is closer.
-    fn add(&mut self, seed: VertexId, label: u32, distance: &mut [f64], region: &mut [u32]) {
+    /// where `seed` is closer, appending those vertices to `lowered`.
+    fn add(&mut self, seed: VertexId, label: u32, distance: &mut [f64], region: &mut [u32], lowered: &mut Vec<u32>) {
+        let seeds = [(seed, label)];
         match self {
-            Front::Fmm(fmm, march) => march.run(fmm, &[(seed, label)], f64::INFINITY, distance, region),
+            Front::Fmm(fmm, march) => march.run(fmm, &seeds, f64::INFINITY, distance, region, |v| lowered.push(v)),
             Front::Dijkstra(graph, search) => {
-                search.propagate(graph, &[(seed, label)], f64::INFINITY);
-                for (i, (d, r)) in distance.iter_mut().zip(region.iter_mut()).enumerate() {
-                    (*d, *r) = (search.distance(i), search.label(i));
+                search.propagate(graph, &seeds, f64::INFINITY, |v| lowered.push(v));
+                for &v in lowered.iter() {
+                    let i = v as usize;
+                    (distance[i], region[i]) = (search.distance(i), search.label(i));
                 }
             }
         }
+    }
+}
+
+/// The farthest usable vertex as distances fall: a tournament tree over the
+/// vertices whose every node holds the winner of its two children (the
+/// larger distance; on a tie the smaller index, which is the left child's),
+/// so that a lowered distance costs O(log V) and the question O(1).
+struct Farthest {
+    /// Leaves from `leaves`: vertex `v` at `leaves + v`, `NONE` where the
+    /// vertex is not usable or does not exist; the root at 1.
+    winner: Vec<u32>,
+    leaves: usize,
+}
+
+const NONE: u32 = u32::MAX;
+
+impl Farthest {
+    fn new(usable: &[bool], distance: &[f64]) -> Self {
+        let leaves = usable.len().next_power_of_two();
+        let mut winner = vec![NONE; 2 * leaves];
+        for (v, _) in usable.iter().enumerate().filter(|(_, u)| **u) {
+            winner[leaves + v] = v as u32;
+        }
+        let mut tree = Self { winner, leaves };
+        tree.replay_all(distance);
+        tree
+    }
+
+    /// Replays every match, bottom up. O(V).
+    fn replay_all(&mut self, distance: &[f64]) {
+        for node in (1..self.leaves).rev() {
+            self.winner[node] = self.match_of(node, distance);
+        }
+    }
+
+    /// Brings the tree up to date after the distances of `vertices` fell:
+    /// their paths to the root, or every match when that is less work (the
+    /// first sample lowers every vertex it reaches).
+    fn lowered(&mut self, vertices: &[u32], distance: &[f64]) {
+        let depth = self.leaves.trailing_zeros() as usize;
+        if vertices.len() * depth > self.leaves {
+            self.replay_all(distance);
+        } else {
+            for &v in vertices {
+                self.update(v, distance);
+            }
+        }
+    }
+
+    /// The winner between the two children of `node`.
+    #[inline]
+    fn match_of(&self, node: usize, distance: &[f64]) -> u32 {
+        match (self.winner[2 * node], self.winner[2 * node + 1]) {
+            (NONE, b) => b,
+            (a, NONE) => a,
+            (a, b) if distance[b as usize] > distance[a as usize] => b,
+            (a, _) => a,
+        }
+    }
+
+    /// Replays the matches above vertex `v`, whose distance changed.
+    fn update(&mut self, v: u32, distance: &[f64]) {
+        let mut node = (self.leaves + v as usize) / 2;
+        while node >= 1 {
+            self.winner[node] = self.match_of(node, distance);
+            node /= 2;
+        }
+    }
+
+    /// The usable vertex farthest from the samples, if any.
+    fn vertex(&self) -> Option<usize> {
+        let v = self.winner[1];
+        (v != NONE).then_some(v as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Farthest;
+    use mesh_kernel::random::SplitMix64;
+
+    /// After random decreases (ties and infinities included), the tree names
+    /// the vertex a scan finds: the largest distance among the usable
+    /// vertices, the smallest index on a tie.
+    #[test]
+    fn the_tree_agrees_with_a_scan() {
+        let mut rng = SplitMix64::new(7);
+        for n in [1, 2, 3, 37, 64, 1000] {
+            let usable: Vec<bool> = (0..n).map(|v| v == 0 || !rng.one_in(5)).collect();
+            let mut distance = vec![f64::INFINITY; n];
+            let mut tree = Farthest::new(&usable, &distance);
+            for step in 0..3 * n {
+                let v = rng.below(n);
+                // Coarse values, so that ties happen.
+                distance[v] = distance[v].min((rng.below(8) * 8 + 8 - step * 8 / (3 * n)) as f64);
+                if step % 2 == 0 {
+                    tree.update(v as u32, &distance);
+                } else {
+                    // Either a path or, for the smallest trees, every match.
+                    tree.lowered(&[v as u32], &distance);
+                }
+                let scan =
+                    (0..n).filter(|&v| usable[v]).max_by(|&a, &b| distance[a].total_cmp(&distance[b]).then(b.cmp(&a)));
+                assert_eq!(tree.vertex(), scan, "n = {n}, step {step}");
+            }
+        }
+        let none = Farthest::new(&[false, false, false], &[1.0; 3]);
+        assert_eq!(none.vertex(), None);
     }
 }

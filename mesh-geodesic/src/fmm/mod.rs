@@ -218,7 +218,7 @@ impl FastMarching {
         let mut distance = vec![f64::INFINITY; n];
         let mut labels = vec![u32::MAX; n];
         let seeds: Vec<(VertexId, u32)> = sources.iter().enumerate().map(|(i, &s)| (s, i as u32)).collect();
-        March::new(n).run(self, &seeds, self.max_distance, &mut distance, &mut labels);
+        March::new(n).run(self, &seeds, self.max_distance, &mut distance, &mut labels, |_| {});
         for (d, l) in distance.iter_mut().zip(&mut labels) {
             if *d > self.max_distance {
                 *d = f64::INFINITY;
@@ -323,8 +323,10 @@ impl March {
     /// run on top of an existing field computes the distance to the union of
     /// the old and new sources, pruned to where the new ones are closer.
     /// `distance` and `labels` are in the internal (breadth-first)
-    /// numbering; seeds are mesh vertices, in range. O(V log V) for the
-    /// region touched.
+    /// numbering; seeds are mesh vertices, in range. `on_accept` sees every
+    /// vertex accepted: with an infinite `max_distance`, the only ones whose
+    /// distance the run lowers.
+    /// O(V log V) for the region touched.
     pub(crate) fn run(
         &mut self,
         fmm: &FastMarching,
@@ -332,6 +334,7 @@ impl March {
         max_distance: f64,
         distance: &mut [f64],
         labels: &mut [u32],
+        on_accept: impl FnMut(u32),
     ) {
         self.next_run();
         for &(s, label) in seeds {
@@ -343,7 +346,7 @@ impl March {
                 self.heap.push_or_decrease(0.0, i as u32, &mut self.position);
             }
         }
-        self.drain(fmm, max_distance, distance, labels);
+        self.drain(fmm, max_distance, distance, labels, on_accept);
     }
 
     /// Marches outwards from a field known on part of the mesh: vertices
@@ -367,7 +370,7 @@ impl March {
                 self.relax(fmm, v as u32, d, distance, labels);
             }
         }
-        self.drain(fmm, f64::INFINITY, distance, labels);
+        self.drain(fmm, f64::INFINITY, distance, labels, |_| {});
     }
 
     /// A new run number (every vertex unaccepted).
@@ -382,13 +385,21 @@ impl March {
 
     /// Accepts vertices from the heap in increasing order until it is empty
     /// or past `max_distance` (the heap is then cleared for the next run).
-    fn drain(&mut self, fmm: &FastMarching, max_distance: f64, distance: &mut [f64], labels: &mut [u32]) {
+    fn drain(
+        &mut self,
+        fmm: &FastMarching,
+        max_distance: f64,
+        distance: &mut [f64],
+        labels: &mut [u32],
+        mut on_accept: impl FnMut(u32),
+    ) {
         while let Some((d, v)) = self.heap.pop(&mut self.position) {
             if d > max_distance {
                 self.heap.clear(&mut self.position);
                 break;
             }
             self.stamp[v as usize] = self.run;
+            on_accept(v);
             self.relax(fmm, v, d, distance, labels);
         }
     }

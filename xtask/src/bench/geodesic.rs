@@ -9,8 +9,8 @@ use std::path::Path;
 use std::sync::{Arc, OnceLock};
 
 use mesh_geodesic::{
-    dijkstra, exact_distance, DijkstraGraph, DijkstraOptions, ExactOptions, FastMarching, FmmOptions, HeatGeodesics,
-    HeatOptions,
+    dijkstra, exact_distance, farthest_point_sampling, DijkstraGraph, DijkstraOptions, ExactOptions, FastMarching,
+    FmmOptions, HeatGeodesics, HeatOptions, SamplingMetric, SamplingOptions,
 };
 use mesh_io::MeshData;
 use mesh_kernel::VertexId;
@@ -45,6 +45,13 @@ pub fn operations<'a>(_path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>>
                 Ok(f) => Ok(f.distances(&sources)?),
                 Err(e) => Err(e.clone().into()),
             }
+        }),
+        // A thousand farthest-point samples on each metric (on a mesh of
+        // fewer vertices, until the radius reaches 0).
+        Operation::new("fps_1000", move || Ok(farthest_point_sampling(mesh, 1000, &SamplingOptions::default())?)),
+        Operation::new("fps_dijkstra_1000", move || {
+            let options = SamplingOptions { metric: SamplingMetric::Dijkstra, ..SamplingOptions::default() };
+            Ok(farthest_point_sampling(mesh, 1000, &options)?)
         }),
         Operation::new("heat_precompute", move || Ok(HeatGeodesics::new(mesh, &HeatOptions::default())?)),
         Operation::new("heat_solve", move || {

@@ -1,14 +1,16 @@
 //! mesh-geodesic: the accuracy targets against great circles on the
 //! unit icosphere (level 5) and straight lines on the flat disk, convergence
 //! under refinement, traced path lengths, metric invariants, and finite
-//! distances (infinity only across components) on every shared mesh; exact
+//! distances (infinity only across components) on every shared mesh;
+//! farthest-point sampling against fresh multi-source searches; exact
 //! polyhedral geodesics against straight lines, cube unfoldings and MMP.
 
 use std::f64::consts::PI;
 
 use mesh_geodesic::{
-    dijkstra, exact_distance, fmm_distance, heat_distance, trace_path, ExactOptions, FmmOptions, FmmUpdate,
-    GeodesicError, HeatGeodesics, HeatOptions, SurfacePoint, TraceOptions,
+    dijkstra, exact_distance, farthest_point_sampling, fmm_distance, heat_distance, trace_path, ExactOptions,
+    FmmOptions, FmmUpdate, GeodesicError, HeatGeodesics, HeatOptions, SamplingMetric, SamplingOptions, SurfacePoint,
+    TraceOptions,
 };
 use mesh_kernel::{shapes, TriMesh, VertexId};
 
@@ -20,6 +22,7 @@ pub fn run(v: &mut Validator) {
     disk_convergence(v);
     traced_paths(v);
     metric_invariants(v);
+    farthest_points(v);
     exact_geodesics(v);
     shared_meshes(v);
 }
@@ -197,6 +200,40 @@ fn metric_invariants(v: &mut Validator) {
             v.at_most("perturbed sphere heat triangle-inequality excess / h", ht, 1.0);
         }
         Err(e) => v.error("metric invariants", e),
+    }
+}
+
+/// Farthest-point sampling on the edge graph against fresh searches: after
+/// each sample, the covering radius is the largest distance of a fresh
+/// multi-source Dijkstra from the samples so far (bit for bit), and the
+/// next sample is the vertex that has it (a perturbed sphere: no ties).
+fn farthest_points(v: &mut Validator) {
+    let run = || -> Res<usize> {
+        let mut m = shapes::icosphere(4).map_err(|e| e.to_string())?;
+        for (i, p) in m.positions_mut().iter_mut().enumerate() {
+            *p *= 1.0 + 0.1 * ((i as f64) * 7.31).sin();
+        }
+        let options = SamplingOptions { metric: SamplingMetric::Dijkstra, ..SamplingOptions::default() };
+        let fps = farthest_point_sampling(&m, 80, &options).map_err(|e| e.to_string())?;
+        let mut mismatches = usize::from(fps.seeds.len() != 80);
+        for j in 1..=fps.seeds.len() {
+            let fresh = dijkstra(&m, &fps.seeds[..j], &Default::default()).map_err(|e| e.to_string())?.distance;
+            let far = (0..fresh.len()).max_by(|&a, &b| fresh[a].total_cmp(&fresh[b]).then(b.cmp(&a)));
+            mismatches += usize::from(far.map(|f| fresh[f]) != Some(fps.radii[j - 1]));
+            if let (Some(next), Some(f)) = (fps.seeds.get(j), far) {
+                mismatches += usize::from(next.idx() != f);
+            }
+            if j == fps.seeds.len() {
+                mismatches += fresh.iter().zip(&fps.distance).filter(|(a, b)| a != b).count();
+            }
+        }
+        Ok(mismatches)
+    };
+    match run() {
+        Ok(bad) => {
+            v.at_most("farthest-point sampling (80, Dijkstra) against fresh searches: mismatches", bad as f64, 0.0)
+        }
+        Err(e) => v.error("farthest-point sampling", e),
     }
 }
 
