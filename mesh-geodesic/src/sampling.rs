@@ -145,7 +145,7 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
     let mut front = Front::new(mesh, options)?;
     // Fields in the front's own vertex numbering.
     let (mut distance, mut region) = (vec![f64::INFINITY; n], vec![u32::MAX; n]);
-    let mut farthest = Farthest::new(&front.to_internal(&usable), &distance);
+    let mut tree = Farthest::new(&front.to_internal(&usable), &distance);
     let (mut seeds, mut radii) = (Vec::with_capacity(count), Vec::with_capacity(count));
     let mut lowered = Vec::new();
     let mut next = Some(start);
@@ -154,9 +154,9 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
         seeds.push(seed);
         lowered.clear();
         front.add(seed, label, &mut distance, &mut region, &mut lowered);
-        farthest.lowered(&lowered, &distance);
+        tree.lowered(&lowered, &distance);
         // The farthest usable vertex; unreached components first.
-        let farthest = farthest.vertex();
+        let farthest = tree.vertex();
         let radius = farthest.map_or(0.0, |v| distance[v] * front.unit());
         radii.push(radius);
         next = match farthest {

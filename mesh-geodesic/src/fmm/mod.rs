@@ -325,8 +325,7 @@ impl March {
     /// `distance` and `labels` are in the internal (breadth-first)
     /// numbering; seeds are mesh vertices, in range. `on_accept` sees every
     /// vertex accepted: with an infinite `max_distance`, the only ones whose
-    /// distance the run lowers.
-    /// O(V log V) for the region touched.
+    /// distance the run lowers. O(V log V) for the region touched.
     pub(crate) fn run(
         &mut self,
         fmm: &FastMarching,
