@@ -107,9 +107,10 @@ pub struct Args {
     /// Runs per operation (the median is reported).
     #[arg(long, default_value_t = 7)]
     runs: usize,
-    /// Only operations whose name contains this text.
-    #[arg(long)]
-    only: Option<String>,
+    /// Only operations whose name contains one of these texts
+    /// (comma-separated), e.g. `normals,cotan`.
+    #[arg(long, value_delimiter = ',')]
+    only: Vec<String>,
     /// Leave out operations whose name contains any of these texts
     /// (comma-separated), e.g. slow ones on a large mesh.
     #[arg(long, value_delimiter = ',')]
@@ -156,7 +157,8 @@ pub fn run(args: &Args) -> Result<()> {
     for group in GROUPS {
         for mut op in group(&args.mesh, &data) {
             let skipped = args.skip.iter().any(|s| op.name.contains(s.as_str()));
-            if skipped || args.only.as_deref().is_some_and(|o| !op.name.contains(o)) {
+            let chosen = args.only.is_empty() || args.only.iter().any(|o| op.name.contains(o.as_str()));
+            if skipped || !chosen {
                 continue;
             }
             mesh_kernel::faer::set_global_parallelism(mesh_kernel::faer::Par::Seq);
