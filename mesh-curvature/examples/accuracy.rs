@@ -60,7 +60,10 @@ fn main() {
             let t = curvature_tensor(mesh, &opts).unwrap();
             let ms = t0.elapsed().as_secs_f64() * 1e3;
             let e = errors(&t, truth);
-            println!("{label:22} {:10.2e} {:10.2e} {:10.2e} {:10.2e} {:8.3} {:8.1}", e.k1, e.k2, e.gaussian, e.mean, e.degrees, ms);
+            println!(
+                "{label:22} {:10.2e} {:10.2e} {:10.2e} {:10.2e} {:8.3} {:8.1}",
+                e.k1, e.k2, e.gaussian, e.mean, e.degrees, ms
+            );
         }
         let h = mean_curvature(mesh, &Default::default()).unwrap();
         let k = gaussian_curvature(mesh, &Default::default()).unwrap();
