@@ -13,10 +13,11 @@
 //! Each archive is built as a workspace of its own, where this workspace's
 //! `[profile.dev]` does not apply; the dry run is given the same settings
 //! (as `CARGO_PROFILE_DEV_*` variables read from the root `Cargo.toml`), so
-//! that it reuses the dependencies an earlier `cargo test` built: about 5
-//! minutes on 2 cores after the tests instead of 20+. Our own crates, which
-//! the dry run compiles again from their archives, are compiled there
-//! without optimization (`--config profile.dev.package.NAME.opt-level=0`).
+//! that it reuses the dependencies an earlier `cargo test` built. Our own
+//! crates, which the dry run compiles again from their archives, are
+//! compiled there without optimization (`--config
+//! profile.dev.package.NAME.opt-level=0`): 74 s on the 2-core Xeon VM
+//! after the tests, against 231 s optimized and 20+ minutes from nothing.
 
 use std::path::Path;
 use std::process::Command;
@@ -32,7 +33,7 @@ pub struct Args {
     names_only: bool,
     /// Package every crate without building it from its archive
     /// (`cargo publish --no-verify`): the manifests, metadata and file lists
-    /// are checked in about a minute instead of about 5 (after `cargo test`).
+    /// are checked in a few seconds instead of about a minute (after `cargo test`).
     #[arg(long)]
     no_verify: bool,
 }
