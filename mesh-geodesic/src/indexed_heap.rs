@@ -13,6 +13,12 @@
 //! a version that broke ties by vertex, with the whole entry compared in
 //! the child loop, made the searches 1.5-2x slower.
 //!
+//! A pop moves the hole down to a leaf along the smallest children and
+//! lets the heap's last entry rise from there (Floyd's bottom-up variant):
+//! the last entry mostly belongs near the bottom, so this saves a
+//! comparison per level. Prepared Dijkstra queries: 4% faster on a
+//! 40,962-vertex icosphere, 1-2% at 470,274 vertices (one core).
+//!
 //! Measured against the radix heap on the distances' bits (Ahuja, Mehlhorn,
 //! Orlin and Tarjan 1990) it replaces, single-source Dijkstra on one core:
 //! 0.7x the time at 470,274 vertices in breadth-first order (the radix heap
@@ -130,31 +136,27 @@ impl IndexedHeap {
     #[inline]
     fn sift_down(&mut self, mut at: usize, entry: (f64, u32), positions: &mut impl Positions) {
         let n = self.entries.len();
+        // Floyd's bottom-up variant: the hole goes down the smallest
+        // children to a leaf without comparing with `entry`, which, taken
+        // from the heap's end, mostly belongs near the bottom; then `entry`
+        // rises from there.
         loop {
             let first = ARITY * at + 1;
             if first >= n {
                 break;
             }
-            // The smallest child, its key kept in a register: reloading it
-            // by index, or keeping the whole entry (selected without a
-            // branch), chained each comparison to the previous one and made
-            // the search 1.5-2x slower.
             let (mut child, mut key) = (first, self.entries[first].0);
             for c in first + 1..(first + ARITY).min(n) {
                 if self.entries[c].0 < key {
                     (child, key) = (c, self.entries[c].0);
                 }
             }
-            if key >= entry.0 {
-                break;
-            }
             let below = self.entries[child];
             self.entries[at] = below;
             positions.set_position(below.1, at as u32);
             at = child;
         }
-        self.entries[at] = entry;
-        positions.set_position(entry.1, at as u32);
+        self.sift_up(at, entry, positions);
     }
 }
 
