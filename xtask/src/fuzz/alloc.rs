@@ -17,7 +17,7 @@
 use mesh_kernel::alloc::BlockCache;
 use std::alloc::{GlobalAlloc, Layout};
 use std::io::Write;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// Inside [`limited`], allocations past this many bytes above what was
@@ -26,10 +26,9 @@ pub const HARD_LIMIT: usize = 2 << 30;
 
 static CURRENT: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
-/// Whether [`HARD_LIMIT`] is enforced (inside [`limited`]).
-static LIMITED: AtomicBool = AtomicBool::new(false);
-/// The total when [`limited`] began.
-static BASE: AtomicUsize = AtomicUsize::new(0);
+/// The largest total allowed: the total when [`limited`] began plus
+/// [`HARD_LIMIT`] inside it, no limit (`usize::MAX`) outside.
+static CEILING: AtomicUsize = AtomicUsize::new(usize::MAX);
 
 /// Runs `f` with [`HARD_LIMIT`] enforced, counted from the bytes allocated now.
 pub fn limited<T>(f: impl FnOnce() -> T) -> T {
@@ -37,11 +36,10 @@ pub fn limited<T>(f: impl FnOnce() -> T) -> T {
     struct Lift;
     impl Drop for Lift {
         fn drop(&mut self) {
-            LIMITED.store(false, Ordering::Relaxed);
+            CEILING.store(usize::MAX, Ordering::Relaxed);
         }
     }
-    BASE.store(current(), Ordering::Relaxed);
-    LIMITED.store(true, Ordering::Relaxed);
+    CEILING.store(current().saturating_add(HARD_LIMIT), Ordering::Relaxed);
     let _lift = Lift;
     f()
 }
@@ -56,7 +54,7 @@ pub struct Counting;
 impl Counting {
     fn grow(&self, bytes: usize) -> bool {
         let now = CURRENT.fetch_add(bytes, Ordering::Relaxed) + bytes;
-        if LIMITED.load(Ordering::Relaxed) && now > BASE.load(Ordering::Relaxed).saturating_add(HARD_LIMIT) {
+        if now > CEILING.load(Ordering::Relaxed) {
             CURRENT.fetch_sub(bytes, Ordering::Relaxed);
             refused(bytes);
             return false;
