@@ -298,8 +298,11 @@ where
     let step = B.max(1);
     let bounds: Vec<usize> =
         (0..=parts).map(|k| (k * faces.len() / parts.max(1)).next_multiple_of(step).min(faces.len())).collect();
+    let sequential = |out: &mut Vec<A>| {
+        each_corner::<V, I, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
+    };
     if parts < 2 {
-        add_in_order(faces, values, &add, &mut out);
+        sequential(&mut out);
         return out;
     }
     let cuts = vertex_cuts(n, faces, &bounds);
@@ -323,7 +326,7 @@ where
     } else {
         seen = seen_before(n, faces, &bounds);
         if !mostly_owned(faces, &bounds, &seen) {
-            add_in_order(faces, values, &add, &mut out);
+            sequential(&mut out);
             return out;
         }
         Owners::FirstCorner(&seen)
@@ -361,22 +364,6 @@ where
         add(&mut out[v as usize], x);
     }
     out
-}
-
-/// Every corner's value added to its vertex in `out`, face after face, in
-/// one loop: a function of its own, so that how the parallel parts are
-/// compiled does not change it (inlined into [`scatter_with`], it ran 5-13%
-/// slower once the parts had two kinds of ownership).
-#[inline(never)]
-fn add_in_order<A, V: Copy, I: Copy, const B: usize>(
-    faces: &[[I; 3]],
-    values: &impl FaceValues<V, B>,
-    add: &impl Fn(&mut A, V),
-    out: &mut [A],
-) where
-    u32: From<I>,
-{
-    each_corner::<V, I, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
 }
 
 /// Which part of a [`scatter`] owns each vertex.
