@@ -196,20 +196,14 @@ pub const SCATTER_CHUNK: usize = 1 << 16;
 ///
 /// Every vertex receives its values in face order, whatever the thread
 /// count, so the sums are identical on any number of threads. Several
-/// threads split the faces into consecutive parts, and each vertex belongs
-/// to one part, which adds to it directly; where other parts have it as a
-/// corner, those before its own part add their values first, and those
-/// after it set theirs aside, to be added part after part at the end.
-/// Where the vertex numbers follow the faces (a sample of the faces shows
-/// at most one corner in 32 outside), each part owns a range of vertex
-/// numbers (from the smallest corner of its first face), and a scan finds
-/// the few faces of earlier parts to add first. Otherwise a vertex belongs
-/// to the first part that has it as a corner (found by a scan that sets a
-/// bit per corner, 2.4 times as long on two threads at 470,274 vertices),
-/// and no part before it has values for it. On meshes whose consecutive faces lie side by side (scans,
+/// threads split the faces into consecutive parts; a vertex belongs to the
+/// first part that has it as a corner, which adds to it directly, while
+/// later parts set their values for it aside, to be added part after part
+/// at the end. On meshes whose consecutive faces lie side by side (scans,
 /// subdivided meshes, any mesh after [`crate::reorder::Reordering`]) few
-/// values are set aside; where a sample shows more than one corner in
-/// eight to set aside (faces in random order), one loop adds everything.
+/// values are set aside; where a sample of the faces shows more than one
+/// corner in eight to set aside (faces in random order), one loop adds
+/// everything.
 pub fn scatter<A, V, I>(
     n: usize,
     faces: &[[I; 3]],
@@ -298,66 +292,25 @@ where
     let step = B.max(1);
     let bounds: Vec<usize> =
         (0..=parts).map(|k| (k * faces.len() / parts.max(1)).next_multiple_of(step).min(faces.len())).collect();
-    let sequential = |out: &mut Vec<A>| {
+    let seen = if parts >= 2 { seen_before(n, faces, &bounds) } else { Vec::new() };
+    if parts < 2 || !mostly_owned(faces, &bounds, &seen) {
         each_corner::<V, I, B>(faces, values, 0, faces.len(), &mut |v, x| add(&mut out[v as usize], x));
-    };
-    if parts < 2 {
-        sequential(&mut out);
         return out;
     }
-    let cuts = vertex_cuts(n, faces, &bounds);
-    let seen;
-    let owners = if outside_ranges(faces, &bounds, &cuts) <= 1.0 / 32.0 {
-        // Values of earlier parts for vertices in later ranges come first.
-        let ahead = map_heavy(parts - 1, |k| reaching_past(faces, bounds[k]..bounds[k + 1], cuts[k + 1]));
-        for (k, list) in ahead.iter().enumerate() {
-            for &f in list {
-                let f = f as usize;
-                let first = bounds[k] + (f - bounds[k]) / step * step;
-                for (&v, x) in faces[f].iter().zip(values.of(first)[f - first]) {
-                    let v = u32::from(v) as usize;
-                    if v >= cuts[k + 1] {
-                        add(&mut out[v], x);
-                    }
-                }
-            }
-        }
-        Owners::Ranges(&cuts)
-    } else {
-        seen = seen_before(n, faces, &bounds);
-        if !mostly_owned(faces, &bounds, &seen) {
-            sequential(&mut out);
-            return out;
-        }
-        Owners::FirstCorner(&seen)
-    };
     let slots = DisjointSlots(out.as_mut_ptr(), n);
-    // One loop per kind of ownership (a test of the kind per corner made
-    // the area-weighted normals 1.4x slower on two threads).
     let aside: Vec<Vec<(u32, V)>> = map_heavy(parts, |k| {
-        let slots = &slots;
+        let (seen, slots) = (&seen[k], &slots);
         let mut aside = Vec::new();
-        let mut sink = |place: Place, v: u32, x: V| match place {
-            // SAFETY: `v < n` is one of part `k`'s vertices, which no other
-            // part writes; `out` outlives the parts, which end here.
-            Place::Own => add(unsafe { slots.at(v as usize) }, x),
-            // A corner past the end panics when it is added.
-            Place::Later => aside.push((v, x)),
-            Place::Done => {}
-        };
-        let part = (bounds[k], bounds[k + 1]);
-        // What the ownership tests read, in locals: the writes through
-        // `slots` could alias it, and it would be loaded at every corner.
-        match owners {
-            Owners::Ranges(cuts) => {
-                let (lo, len) = (cuts[k] as u32, (cuts[k + 1] - cuts[k]) as u32);
-                each_corner::<V, I, B>(faces, values, part.0, part.1, &mut |v, x| sink(in_range(lo, len, n, v), v, x))
+        each_corner::<V, I, B>(faces, values, bounds[k], bounds[k + 1], &mut |v, x| {
+            if has(seen, v) {
+                aside.push((v, x));
+            } else {
+                // SAFETY: vertex `v` is written by one part only: the
+                // first with `v` as a corner (the others have it in
+                // `seen`); `out` outlives the parts, which end here.
+                add(unsafe { slots.at(v as usize) }, x)
             }
-            Owners::FirstCorner(seen) => {
-                let seen = &seen[k][..];
-                each_corner::<V, I, B>(faces, values, part.0, part.1, &mut |v, x| sink(first_corner(seen, n, v), v, x))
-            }
-        }
+        });
         aside
     });
     for (v, x) in aside.into_iter().flatten() {
@@ -366,53 +319,8 @@ where
     out
 }
 
-/// Which part of a [`scatter`] owns each vertex.
-enum Owners<'a> {
-    /// Part `k` owns vertices `cuts[k]..cuts[k + 1]`.
-    Ranges(&'a [usize]),
-    /// Part `k` owns the vertices that no part before it has as a corner
-    /// (those not in `seen[k]`) and that it has as a corner itself.
-    FirstCorner(&'a [Vec<u64>]),
-}
-
-/// What part `k` of a [`scatter`] does with a corner's value.
-enum Place {
-    /// Adds it: the vertex is its own.
-    Own,
-    /// Sets it aside, to be added after the owner's values.
-    Later,
-    /// Nothing: it was added before the parts started.
-    Done,
-}
-
-/// Where a part's value for vertex `v` (of `n`) goes when the part owns
-/// vertices `lo..lo + len`; never [`Place::Own`] for `v >= n`.
-#[inline(always)]
-fn in_range(lo: u32, len: u32, n: usize, v: u32) -> Place {
-    if v.wrapping_sub(lo) < len {
-        Place::Own
-    } else if v < lo || v as usize >= n {
-        Place::Later
-    } else {
-        Place::Done
-    }
-}
-
-/// Where a part's value for vertex `v` (of `n`) goes when it owns the
-/// vertices that no part before it has (those not in `seen`); never
-/// [`Place::Own`] for `v >= n`.
-#[inline(always)]
-fn first_corner(seen: &[u64], n: usize, v: u32) -> Place {
-    if (v as usize) < n && !has(seen, v) {
-        Place::Own
-    } else {
-        Place::Later
-    }
-}
-
-/// Most parts of a [`scatter`]: each sets aside the corners it shares with
-/// the parts before it (and, owning the vertices that no part before it
-/// has, costs a bit per vertex).
+/// Most parts of a [`scatter`]: each costs a bit per vertex, and sets aside
+/// the corners it shares with the parts before it.
 const MAX_PARTS: usize = 16;
 
 /// The accumulators of a [`scatter`] (start and length), written by several
@@ -424,59 +332,16 @@ struct DisjointSlots<A>(*mut A, usize);
 unsafe impl<A: Send> Sync for DisjointSlots<A> {}
 
 impl<A> DisjointSlots<A> {
-    /// The accumulator of vertex `i`.
+    /// The accumulator of vertex `i`; panics past the end, like an index.
     ///
     /// # Safety
-    /// `i` is below the length, and no other reference to element `i` is
-    /// live.
+    /// No other reference to element `i` is live.
     #[allow(clippy::mut_from_ref)]
     unsafe fn at(&self, i: usize) -> &mut A {
-        debug_assert!(i < self.1, "corner {i} of a scatter over {} vertices", self.1);
-        // SAFETY: in bounds and unaliased, as the caller promises.
+        assert!(i < self.1, "corner {i} of a scatter over {} vertices", self.1);
+        // SAFETY: in bounds, and unaliased as the caller promises.
         unsafe { &mut *self.0.add(i) }
     }
-}
-
-/// The first vertex of each part's range in a [`scatter`] (`parts + 1`
-/// values, from 0 to `n`): the smallest corner of the part's first face,
-/// never below the range before.
-fn vertex_cuts<I: Copy>(n: usize, faces: &[[I; 3]], bounds: &[usize]) -> Vec<usize>
-where
-    u32: From<I>,
-{
-    let parts = bounds.len() - 1;
-    let mut cuts = vec![0; parts + 1];
-    for k in 1..parts {
-        let first = faces.get(bounds[k]).map_or(n, |tri| tri.iter().map(|&v| u32::from(v) as usize).min().unwrap_or(n));
-        cuts[k] = first.clamp(cuts[k - 1], n);
-    }
-    cuts[parts] = n;
-    cuts
-}
-
-/// The share of corners outside their part's range of vertices, judged
-/// from every 61st face.
-fn outside_ranges<I: Copy>(faces: &[[I; 3]], bounds: &[usize], cuts: &[usize]) -> f64
-where
-    u32: From<I>,
-{
-    let (mut corners, mut outside) = (0usize, 0usize);
-    for k in 0..bounds.len() - 1 {
-        for tri in faces[bounds[k]..bounds[k + 1]].iter().step_by(61) {
-            corners += 3;
-            outside += tri.iter().filter(|&&v| !(cuts[k]..cuts[k + 1]).contains(&(u32::from(v) as usize))).count();
-        }
-    }
-    outside as f64 / corners.max(1) as f64
-}
-
-/// The faces of `part`, ascending, with a corner at or past `end`.
-fn reaching_past<I: Copy>(faces: &[[I; 3]], part: std::ops::Range<usize>, end: usize) -> Vec<u32>
-where
-    u32: From<I>,
-{
-    let end = end as u32;
-    part.filter(|&f| faces[f].iter().any(|&v| u32::from(v) >= end)).map(|f| f as u32).collect()
 }
 
 /// For each part `k` of a [`scatter`] (faces `bounds[k]..bounds[k + 1]`),
@@ -666,25 +531,11 @@ mod tests {
     #[test]
     fn scatter_sums_do_not_depend_on_the_thread_count() {
         let m = 5 * SCATTER_CHUNK;
-        // In order; with the first and last vertices in every 500th face
-        // (values for them from every part); a few faces out of place
-        // (these three with vertex ranges); the vertices numbered evens
-        // first, then odds, like the old and new vertices of a subdivision
-        // (first corners); shuffled (one loop).
-        let mut hubs = strip(m);
-        for (j, tri) in hubs.iter_mut().step_by(500).enumerate() {
-            let ends = [0, m as u32 + 1];
-            (tri[0], tri[2]) = (ends[j % 2], ends[1 - j % 2]);
-        }
-        let half = (m as u32 + 3) / 2;
-        let split =
-            strip(m).into_iter().map(|tri| tri.map(|v| if v % 2 == 0 { v / 2 } else { half + v / 2 })).collect();
-        let cases = [strip(m), hubs, shuffled(strip(m), 3, 2000), split, shuffled(strip(m), 3, 2 * m)];
-        for (i, faces) in cases.into_iter().enumerate() {
+        // In order, a few faces out of place (some corners set aside), shuffled.
+        for (i, faces) in [strip(m), shuffled(strip(m), 3, 2000), shuffled(strip(m), 3, 2 * m)].into_iter().enumerate()
+        {
             let bounds = [0, m, 2 * m];
-            let in_ranges = outside_ranges(&faces, &bounds, &vertex_cuts(m + 2, &faces, &bounds)) <= 1.0 / 32.0;
-            let owned = mostly_owned(&faces, &bounds, &seen_before(m + 2, &faces, &bounds));
-            assert_eq!((in_ranges, owned), (i < 3, i < 4), "case {i}");
+            assert_eq!(mostly_owned(&faces, &bounds, &seen_before(m + 2, &faces, &bounds)), i < 2, "case {i}");
             let n = faces.len() / 2 + 2;
             let run = |threads: usize| {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
@@ -692,31 +543,9 @@ mod tests {
                     scatter(n, &faces, 0.0f64, |f| [1.0 / (f as f64 + 1.0), 0.1, (f as f64).sqrt()], |a, x| *a += x)
                 })
             };
-            // The same values four faces at a time, as a batched kernel gives them.
-            let batched = |threads: usize| {
-                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-                pool.install(|| {
-                    scatter_batched::<_, _, _, 4>(
-                        n,
-                        &faces,
-                        0.0f64,
-                        |first| {
-                            std::array::from_fn(|i| {
-                                let f = (first + i) as f64;
-                                [1.0 / (f + 1.0), 0.1, f.sqrt()]
-                            })
-                        },
-                        |a, x| *a += x,
-                    )
-                })
-            };
             let one = run(1);
             for threads in [2, 3, 8] {
                 assert!(one.iter().zip(run(threads)).all(|(a, b)| a.to_bits() == b.to_bits()), "{threads} threads");
-                assert!(
-                    one.iter().zip(batched(threads)).all(|(a, b)| a.to_bits() == b.to_bits()),
-                    "{threads}, batched"
-                );
             }
         }
     }

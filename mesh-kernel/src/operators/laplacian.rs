@@ -74,9 +74,7 @@ impl LaplacianKind {
 /// stiffness instead of an infinite one. Use
 /// [`super::IntrinsicTriangulation`] for a Laplacian that stays well-defined
 /// and non-negative on such input.
-// Always inlined: called out of line from `cotan_weights`' scatter it
-// made the cotangent Laplacian 1.3x slower (2026-12-05).
-#[inline(always)]
+#[inline]
 pub fn triangle_cotans(tri: [DVec3; 3]) -> [f64; 3] {
     // In the triangle's own unit (exact), where nothing over- or underflows;
     // the degeneracy test is that of `crate::clean::is_degenerate_triangle`, on the same
