@@ -54,9 +54,10 @@ pub fn unit_vector(v: DVec3) -> DVec3 {
 }
 
 /// Every vector of `vectors` replaced by its [`unit_vector`], in parallel
-/// from 131,072 vectors; the same bits as one call per vector. Four vectors at a time: their four square roots and
-/// divisions are independent, which the processor overlaps (1.5x faster
-/// than one call per vector at 655,362 vectors, 2026-12-05).
+/// from 131,072 vectors; the same bits as one call per vector. Four
+/// vectors at a time: their four square roots and divisions are
+/// independent, which the processor overlaps (1.5x faster than one call
+/// per vector at 655,362 vectors, 2026-12-05).
 pub fn unit_vectors_in_place(vectors: &mut [DVec3]) {
     let (quads, rest) = vectors.as_chunks_mut::<4>();
     if quads.len() < PARALLEL_UNIT_QUADS {
@@ -68,12 +69,12 @@ pub fn unit_vectors_in_place(vectors: &mut [DVec3]) {
 }
 
 /// Groups of four vectors from which [`unit_vectors_in_place`] runs on
-/// several threads. Each vector costs about 5 ns, and
-/// waking a second thread about 0.4 ms on a 2-core Intel Xeon VM: from
-/// `par`'s usual threshold the area-weighted normals of a 40,962-vertex
-/// icosphere took 0.87-0.90 ms on two threads against 0.47-0.51 on one
-/// (0.46-0.49 from this one), while at 470,274 vertices two threads still
-/// save 1.1-2.4 ms (2026-12-05).
+/// several threads. Each vector costs about 5 ns, and waking a second
+/// thread about 0.4 ms on a 2-core Intel Xeon VM: from `par`'s usual
+/// threshold the area-weighted normals of a 40,962-vertex icosphere took
+/// 0.87-0.90 ms on two threads against 0.47-0.51 on one (0.46-0.49 from
+/// this one), while at 470,274 vertices two threads still save 1.1-2.4 ms
+/// (2026-12-05).
 const PARALLEL_UNIT_QUADS: usize = 1 << 15;
 
 /// [`unit_vector`] of four vectors. Where all four lie in the range without
