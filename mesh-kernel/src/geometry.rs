@@ -54,28 +54,15 @@ pub fn unit_vector(v: DVec3) -> DVec3 {
 }
 
 /// Every vector of `vectors` replaced by its [`unit_vector`], in parallel
-/// from 131,072 vectors; the same bits as one call per vector. Four
-/// vectors at a time: their four square roots and divisions are
-/// independent, which the processor overlaps (1.5x faster than one call
-/// per vector at 655,362 vectors, 2026-12-05).
+/// from [`par::UPDATE_FROM`] groups of four; the same bits as one call per
+/// vector. Four vectors at a time: their four square roots and divisions
+/// are independent, which the processor overlaps (1.5x faster than one
+/// call per vector at 655,362 vectors, 2026-12-05).
 pub fn unit_vectors_in_place(vectors: &mut [DVec3]) {
     let (quads, rest) = vectors.as_chunks_mut::<4>();
-    if quads.len() < PARALLEL_UNIT_QUADS {
-        quads.iter_mut().for_each(|q| *q = unit_vectors(*q));
-    } else {
-        par::update(quads, |q| *q = unit_vectors(*q));
-    }
+    par::update(quads, |q| *q = unit_vectors(*q));
     rest.iter_mut().for_each(|v| *v = unit_vector(*v));
 }
-
-/// Groups of four vectors from which [`unit_vectors_in_place`] runs on
-/// several threads. Each vector costs about 5 ns, and waking a second
-/// thread about 0.4 ms on a 2-core Intel Xeon VM: from `par`'s usual
-/// threshold the area-weighted normals of a 40,962-vertex icosphere took
-/// 0.87-0.90 ms on two threads against 0.47-0.51 on one (0.46-0.49 from
-/// this one), while at 470,274 vertices two threads still save 1.1-2.4 ms
-/// (2026-12-05).
-const PARALLEL_UNIT_QUADS: usize = 1 << 15;
 
 /// [`unit_vector`] of four vectors. Where all four lie in the range without
 /// rescaling, `v * (1 / |v|)` is what `normalize_or_zero` computes there
@@ -619,7 +606,7 @@ mod tests {
         ];
         let mut rng = crate::random::SplitMix64::new(11);
         // One loop, and past the threshold of several threads.
-        for len in [10_003, 4 * PARALLEL_UNIT_QUADS + 3] {
+        for len in [10_003, 4 * par::UPDATE_FROM + 3] {
             let mut vectors: Vec<DVec3> = (0..len)
                 .map(|i| {
                     if i % 4 == 3 && i < 200 {
