@@ -6,8 +6,10 @@
 //! Each vertex's position in the heap is kept by the caller beside the
 //! vertex's other search state ([`Positions`]), so that relaxing an edge
 //! touches one cache line of per-vertex data, not two. A node's four
-//! children are consecutive, and a pop compares them with the branch
-//! predictor's help (a branch-free selection measured 10-15% slower).
+//! children are consecutive; a pop compares them as two pairs and then the
+//! two smaller keys, so that each level waits for two comparisons, not
+//! three in a row: prepared Dijkstra queries at 470,274 vertices took
+//! 11% less time than with a scan of the four (FMM 3%).
 //! Equal distances come out in an order fixed by the sequence of pushes
 //! and pops (the same on every run and machine), not by vertex number:
 //! a version that broke ties by vertex, with the whole entry compared in
@@ -146,16 +148,24 @@ impl IndexedHeap {
             if first >= n {
                 break;
             }
-            // The smallest child, its key kept in a register: reloading it
-            // by index, or keeping the whole entry (selected without a
-            // branch), chained each comparison to the previous one and made
-            // the search 1.5-2x slower.
-            let (mut child, mut key) = (first, self.entries[first].0);
-            for c in first + 1..(first + ARITY).min(n) {
-                if self.entries[c].0 < key {
-                    (child, key) = (c, self.entries[c].0);
+            // The first smallest child, comparing keys only: keeping the
+            // whole entry, or reloading the key by index, chained each
+            // comparison to the previous one and made the search 1.5-2x
+            // slower.
+            let child = if let Some(four) = self.entries.get(first..first + ARITY) {
+                let (k0, k1, k2, k3) = (four[0].0, four[1].0, four[2].0, four[3].0);
+                let (left, kl) = if k1 < k0 { (1, k1) } else { (0, k0) };
+                let (right, kr) = if k3 < k2 { (3, k3) } else { (2, k2) };
+                first + if kr < kl { right } else { left }
+            } else {
+                let (mut child, mut key) = (first, self.entries[first].0);
+                for c in first + 1..n {
+                    if self.entries[c].0 < key {
+                        (child, key) = (c, self.entries[c].0);
+                    }
                 }
-            }
+                child
+            };
             let below = self.entries[child];
             self.entries[at] = below;
             positions.set_position(below.1, at as u32);

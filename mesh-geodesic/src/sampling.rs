@@ -142,7 +142,7 @@ pub fn farthest_point_sampling(mesh: &TriMesh, count: usize, options: &SamplingO
         None => VertexId::new(usable.iter().position(|u| *u).ok_or(mesh_kernel::MeshError::Empty)?),
     };
     let n = mesh.vertex_count();
-    let mut front = Front::new(mesh, options)?;
+    let mut front = Front::new(mesh, count, options)?;
     // Fields in the front's own vertex numbering.
     let (mut distance, mut region) = (vec![f64::INFINITY; n], vec![u32::MAX; n]);
     let mut tree = Farthest::new(&front.to_internal(&usable), &distance);
@@ -181,12 +181,12 @@ enum Front {
 }
 
 impl Front {
-    fn new(mesh: &TriMesh, options: &SamplingOptions) -> Result<Self> {
+    fn new(mesh: &TriMesh, count: usize, options: &SamplingOptions) -> Result<Self> {
         let n = mesh.vertex_count();
         Ok(match options.metric {
             SamplingMetric::FastMarching => Front::Fmm(FastMarching::new(mesh, &options.fmm)?, March::new(n)),
             SamplingMetric::Dijkstra => {
-                Front::Dijkstra(EdgeGraph::new(mesh, robust_lengths(mesh), None), Search::unreached(n))
+                Front::Dijkstra(EdgeGraph::new(mesh, robust_lengths(mesh), None), Search::unreached(n, count))
             }
         })
     }
