@@ -96,6 +96,15 @@ fn components_and_isolated_vertices() {
     assert!(fps.seeds.iter().all(|s| s.idx() < n - 2), "isolated vertices are never samples");
     assert!(fps.distance[..n - 2].iter().all(|d| d.is_finite()));
     assert_eq!(fps.radii[0], f64::INFINITY);
+    // One sample on the edge graph (a search that keeps no labels): region
+    // 0 exactly where the sample's component is reached.
+    let one = farthest_point_sampling(&mesh, 1, &metric(SamplingMetric::Dijkstra)).unwrap();
+    let tree = dijkstra(&mesh, &one.seeds, &Default::default()).unwrap();
+    assert_eq!(one.distance, tree.distance);
+    for v in 0..n {
+        assert_eq!(one.region[v], if one.distance[v].is_finite() { 0 } else { u32::MAX }, "vertex {v}");
+    }
+    assert!(one.region.iter().any(|&r| r == u32::MAX) && one.region.iter().any(|&r| r == 0));
     // Asking for more samples than vertices: all of them, radius 0.
     let small = shapes::icosphere(0).unwrap();
     let fps = farthest_point_sampling(&small, 100, &metric(SamplingMetric::Dijkstra)).unwrap();
