@@ -171,10 +171,10 @@ impl IndexedHeap {
                 let (right, kr) = if k3 < k2 { (3, k3) } else { (2, k2) };
                 first + if kr < kl { right } else { left }
             } else {
-                let (mut child, mut key) = (first, self.entries[first].0);
+                let (mut child, mut smallest) = (first, self.entries[first].0);
                 for c in first + 1..n {
-                    if self.entries[c].0 < key {
-                        (child, key) = (c, self.entries[c].0);
+                    if self.entries[c].0 < smallest {
+                        (child, smallest) = (c, self.entries[c].0);
                     }
                 }
                 child
