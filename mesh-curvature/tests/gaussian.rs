@@ -194,3 +194,55 @@ proptest! {
         prop_assert!((k.total() - 4.0 * PI).abs() < 1e-10);
     }
 }
+
+#[test]
+fn every_vertex_of_a_large_mesh_gets_its_own_values() {
+    // Past several chunks of the per-vertex pass: a closed sphere, a flat
+    // grid with a boundary, a zero-area face and an isolated vertex, each
+    // vertex checked against its kind, the lumped mass and the geometry.
+    let sphere = shapes::icosphere(6).unwrap();
+    let grid = shapes::grid(1.0, 1.0, 199, 199).unwrap();
+    let mut positions = sphere.positions().to_vec();
+    let mut faces = sphere.faces().to_vec();
+    let offset = positions.len() as u32;
+    positions.extend(grid.positions().iter().map(|p| *p + DVec3::new(5.0, 0.0, 0.0)));
+    faces.extend(grid.faces().iter().map(|f| f.map(|v| v + offset)));
+    let flat = positions.len() as u32;
+    positions.extend([DVec3::new(9.0, 0.0, 0.0); 3]);
+    faces.push([flat, flat + 1, flat + 2]);
+    positions.push(DVec3::new(-9.0, 0.0, 0.0));
+    let m = TriMesh::new(positions, faces).unwrap();
+    assert!(m.vertex_count() > 80_000);
+    let k = gaussian_curvature(&m, &GaussianOptions::default()).unwrap();
+    let mass = m.geometry().lumped_mass(MassKind::default());
+    let kinds = m.connectivity().vertex_kinds();
+    let (mut interior, mut boundary, mut turning) = (0, 0, 0.0);
+    for v in 0..m.vertex_count() {
+        assert!((k.area[v] - mass[v]).abs() <= 1e-12 * mass[v].max(1e-300), "vertex {v}");
+        let on_grid = v >= offset as usize && v < flat as usize;
+        match k.status[v] {
+            VertexStatus::Valid => {
+                interior += 1;
+                assert_eq!(kinds[v], mesh_kernel::VertexKind::Interior);
+                assert!(k.area[v] > 0.0 && k.pointwise[v] == k.integrated[v] / k.area[v]);
+                // 4 pi over the sphere's vertices, 0 on the flat grid.
+                assert!(if on_grid { k.integrated[v].abs() < 1e-12 } else { k.integrated[v] > 0.0 }, "vertex {v}");
+            }
+            VertexStatus::Boundary => {
+                assert!(k.integrated[v] == 0.0 && k.pointwise[v] == 0.0 && k.geodesic[v].is_finite(), "vertex {v}");
+                if on_grid {
+                    boundary += 1;
+                    turning += k.geodesic[v];
+                } else {
+                    // The zero-area face's corners: a boundary of their own.
+                    assert!(v >= flat as usize && k.area[v] == 0.0, "vertex {v}");
+                }
+            }
+            VertexStatus::Isolated => assert_eq!(v, m.vertex_count() - 1),
+            s => panic!("vertex {v}: {s:?}"),
+        }
+    }
+    assert_eq!(interior, sphere.vertex_count() + 198 * 198);
+    assert_eq!(boundary, 4 * 199);
+    assert!((turning - TAU).abs() < 1e-10, "{turning}");
+}
