@@ -32,51 +32,63 @@ pub fn map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
 /// one (2026-12-05).
 pub const CHEAP_FROM: usize = 1 << 17;
 
-/// `K` arrays of `n` values, row `i` of them being `f(i)`: a [`map`] whose
-/// results go to separate arrays (a struct of arrays), each value written
-/// once, with no array filled beforehand; in parallel from [`CHEAP_FROM`]
-/// rows (per-vertex values from sums over faces).
-pub fn map_columns<T: Copy + Send + Sync, const K: usize>(
+/// `K` arrays of `n` values and one of `n` flags, row `i` of them being
+/// `f(i) = (values, flag)`: a [`map`] whose results go to separate arrays
+/// (a struct of arrays), each entry written once, with no array filled
+/// beforehand; in parallel from [`CHEAP_FROM`] rows (per-vertex values
+/// from sums over faces, and a status). A `()` flag costs nothing.
+pub fn map_columns<T, U, const K: usize>(
     n: usize,
-    f: impl Fn(usize) -> [T; K] + Sync + Send,
-) -> [Vec<T>; K] {
-    use std::mem::MaybeUninit;
+    f: impl Fn(usize) -> ([T; K], U) + Sync + Send,
+) -> ([Vec<T>; K], Vec<U>)
+where
+    T: Copy + Send + Sync,
+    U: Copy + Send + Sync,
+{
+    use std::mem::{take, MaybeUninit};
     let mut columns: [Vec<T>; K] = std::array::from_fn(|_| Vec::with_capacity(n));
-    let fill = |first: usize, mut pieces: [&mut [MaybeUninit<T>]; K]| {
-        for j in 0..pieces[0].len() {
-            let row = f(first + j);
+    let mut flags: Vec<U> = Vec::with_capacity(n);
+    type Piece<'a, X> = &'a mut [MaybeUninit<X>];
+    let fill = |(first, mut pieces, flags): (usize, [Piece<T>; K], Piece<U>)| {
+        for (j, flag) in flags.iter_mut().enumerate() {
+            let (row, f_j) = f(first + j);
             for (piece, value) in pieces.iter_mut().zip(row) {
                 piece[j].write(value);
             }
+            flag.write(f_j);
         }
     };
-    let mut rest: [&mut [MaybeUninit<T>]; K] = columns.each_mut().map(|c| &mut c.spare_capacity_mut()[..n]);
+    let mut rest: [Piece<T>; K] = columns.each_mut().map(|c| &mut c.spare_capacity_mut()[..n]);
+    let mut rest_flags: Piece<U> = &mut flags.spare_capacity_mut()[..n];
     let mut chunks = Vec::with_capacity(n.div_ceil(MIN_TASK));
     for first in (0..n).step_by(MIN_TASK) {
         let len = MIN_TASK.min(n - first);
-        let mut chunk: [&mut [MaybeUninit<T>]; K] = std::array::from_fn(|_| <&mut [MaybeUninit<T>]>::default());
-        for (c, r) in chunk.iter_mut().zip(rest.iter_mut()) {
-            let (head, tail) = std::mem::take(r).split_at_mut(len);
-            (*c, *r) = (head, tail);
-        }
-        chunks.push((first, chunk));
+        let pieces = rest.each_mut().map(|r| {
+            let (head, tail) = take(r).split_at_mut(len);
+            *r = tail;
+            head
+        });
+        let (head, tail) = take(&mut rest_flags).split_at_mut(len);
+        rest_flags = tail;
+        chunks.push((first, pieces, head));
     }
     #[cfg(feature = "rayon")]
     if n >= CHEAP_FROM {
         use rayon::prelude::*;
-        chunks.into_par_iter().for_each(|(first, chunk)| fill(first, chunk));
+        chunks.into_par_iter().for_each(fill);
     } else {
-        chunks.into_iter().for_each(|(first, chunk)| fill(first, chunk));
+        chunks.into_iter().for_each(fill);
     }
     #[cfg(not(feature = "rayon"))]
-    chunks.into_iter().for_each(|(first, chunk)| fill(first, chunk));
+    chunks.into_iter().for_each(fill);
+    // SAFETY (both): the chunks cover rows 0..n of every array, and `fill`
+    // wrote each of their slots (had `f` panicked, we would not be here);
+    // `Copy` values need no drop.
     for column in &mut columns {
-        // SAFETY: the chunks cover rows 0..n of every column, and `fill`
-        // wrote each of their slots (had `f` panicked, we would not be
-        // here); `T: Copy` values need no drop.
         unsafe { column.set_len(n) };
     }
-    columns
+    unsafe { flags.set_len(n) };
+    (columns, flags)
 }
 
 /// Items from which [`update`] runs in parallel. Its updates are cheap
@@ -611,11 +623,11 @@ mod tests {
     fn map_columns_writes_row_i_of_every_column() {
         // Empty, one partial chunk, and several threads' chunks.
         for n in [0, 5, MIN_TASK + 3, CHEAP_FROM + 7] {
-            let [a, b, c] = map_columns(n, |i| [i as u64, 2 * i as u64 + 1, (i % 7) as u64]);
+            let ([a, b], c) = map_columns(n, |i| ([i as u64, 2 * i as u64 + 1], (i % 7) as u8));
             let expect = |g: fn(usize) -> u64| (0..n).map(g).collect::<Vec<_>>();
             assert_eq!(a, expect(|i| i as u64), "{n}");
             assert_eq!(b, expect(|i| 2 * i as u64 + 1), "{n}");
-            assert_eq!(c, expect(|i| (i % 7) as u64), "{n}");
+            assert_eq!(c, (0..n).map(|i| (i % 7) as u8).collect::<Vec<_>>(), "{n}");
         }
     }
 
