@@ -81,13 +81,13 @@ where
     }
     #[cfg(not(feature = "rayon"))]
     chunks.into_iter().for_each(fill);
-    // SAFETY (both): the chunks cover rows 0..n of every array, and `fill`
-    // wrote each of their slots (had `f` panicked, we would not be here);
-    // `Copy` values need no drop.
-    for column in &mut columns {
-        unsafe { column.set_len(n) };
+    // SAFETY: the chunks cover rows 0..n of every array, and `fill` wrote
+    // each of their slots (had `f` panicked, we would not be here); `Copy`
+    // values need no drop.
+    unsafe {
+        columns.iter_mut().for_each(|column| column.set_len(n));
+        flags.set_len(n);
     }
-    unsafe { flags.set_len(n) };
     (columns, flags)
 }
 
