@@ -232,7 +232,8 @@ fn place<T, const G: usize>(
     }
 }
 
-/// Most runs of a [`group_by_key`]: each costs a count array over the keys.
+/// Most runs of a [`group_by_key`] or of a [`scatter`]'s [`owners`]: each
+/// costs an array over the keys or the vertices, and one step more to merge.
 const MAX_RUNS: usize = 4;
 
 /// The number of threads a parallel map started here runs on (1 without
@@ -422,18 +423,19 @@ impl<A> DisjointSlots<A> {
 
 /// The part of a [`scatter`] that owns each vertex: the first part (faces
 /// `bounds[k]..bounds[k + 1]`) with the vertex as a corner, [`NO_PART`]
-/// where none but the last has it. A run per thread scans its parts'
-/// faces backwards, storing each face's part at its corners, so that the
-/// first face's part is the one left; plain byte stores, which do not wait
-/// for each other as setting bits in a word did (2026-12-05: 0.5 ms
-/// against 1.6-2.8 ms at 940,544 faces on two threads). The runs' arrays
-/// are merged run by run, each vertex keeping the first run's part.
+/// where none but the last has it. A run per thread (up to [`MAX_RUNS`])
+/// scans its parts' faces backwards, storing each face's part at its
+/// corners, so that the first face's part is the one left; plain byte
+/// stores, which do not wait for each other as setting bits in a word did
+/// (2026-12-05: 0.5-0.9 ms against 1.6-2.8 ms at 940,544 faces on two
+/// threads). The runs' arrays are merged run by run, each vertex keeping
+/// the first run's part.
 fn owners<I: Copy + Sync>(n: usize, faces: &[[I; 3]], bounds: &[usize]) -> Vec<u8>
 where
     u32: From<I>,
 {
     let scanned = bounds.len() - 2;
-    let runs = threads().clamp(1, scanned);
+    let runs = threads().min(MAX_RUNS).clamp(1, scanned);
     let run_parts = |r: usize| r * scanned / runs..(r + 1) * scanned / runs;
     let mut arrays = map_heavy(runs, |r| {
         let mut owner = vec![NO_PART; n];
