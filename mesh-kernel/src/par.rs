@@ -1,9 +1,10 @@
 //! Data-parallel maps over index ranges, one policy for every crate: rayon
 //! with the `rayon` feature for ranges of at least [`PARALLEL_FROM`] items
-//! ([`UPDATE_FROM`] for the cheap in-place [`update`]; split into tasks of
-//! at least [`MIN_TASK`] items), a plain loop otherwise. Results are
-//! identical either way: each output of a map depends only on its index,
-//! and [`scatter`] adds in an order fixed by the mesh, not by the thread
+//! ([`UPDATE_FROM`] for the cheap in-place [`update`], [`CHEAP_FROM`] for
+//! maps of a few nanoseconds per item; split into tasks of at least
+//! [`MIN_TASK`] items), a plain loop otherwise. Results are identical
+//! either way: each output of a map depends only on its index, and
+//! [`scatter`] adds in an order fixed by the mesh, not by the thread
 //! count.
 
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
