@@ -99,11 +99,11 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
     let kinds = conn.vertex_kinds();
     let ([integrated, geodesic, pointwise, area], status) = par::map_columns(mesh.vertex_count(), |i| {
         let (sum, area) = (sums[i].angle + sums[i].compensation, sums[i].area);
-        let kind = kinds[i];
-        match kind {
-            VertexKind::Isolated | VertexKind::NonManifold => ([0.0, 0.0, 0.0, area], status_of_kind(kind)),
-            VertexKind::Boundary => ([0.0, PI - sum, 0.0, area], VertexStatus::Boundary),
-            VertexKind::Interior if area > 0.0 => ([TAU - sum, 0.0, (TAU - sum) / area, area], VertexStatus::Valid),
+        let status = status_of_kind(kinds[i]);
+        match kinds[i] {
+            VertexKind::Isolated | VertexKind::NonManifold => ([0.0, 0.0, 0.0, area], status),
+            VertexKind::Boundary => ([0.0, PI - sum, 0.0, area], status),
+            VertexKind::Interior if area > 0.0 => ([TAU - sum, 0.0, (TAU - sum) / area, area], status),
             VertexKind::Interior => ([TAU - sum, 0.0, 0.0, area], VertexStatus::Degenerate),
         }
     });
