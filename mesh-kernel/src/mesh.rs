@@ -32,8 +32,30 @@ pub struct TriMesh {
 
 /// Whether every triangle's corners are below `n` and distinct: two
 /// reductions without a branch, the largest corner and the smallest XOR
-/// of two corners of a triangle (zero exactly when they are equal).
+/// of two corners of a triangle (zero exactly when they are equal). The
+/// unsigned minima and maxima are vector instructions from SSE4.1 on, so
+/// the scan is also compiled for AVX2 and picked at run time: 3.76 million
+/// faces took 13 ms on one thread with the baseline's SSE2 and 6 ms with
+/// AVX2, which is then bound by memory (2026-12-06).
 fn valid_triangles(faces: &[[u32; 3]], n: usize) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the processor has AVX2, checked just above.
+        return unsafe { valid_triangles_avx2(faces, n) };
+    }
+    valid_triangles_portable(faces, n)
+}
+
+/// [`valid_triangles_portable`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn valid_triangles_avx2(faces: &[[u32; 3]], n: usize) -> bool {
+    valid_triangles_portable(faces, n)
+}
+
+/// [`valid_triangles`] for any processor.
+#[inline(always)]
+fn valid_triangles_portable(faces: &[[u32; 3]], n: usize) -> bool {
     let (largest, differ) = faces.iter().fold((0u32, u32::MAX), |(hi, lo), &[a, b, c]| {
         (hi.max(a.max(b).max(c)), lo.min((a ^ b).min(a ^ c).min(b ^ c)))
     });
@@ -257,6 +279,32 @@ mod tests {
 
     fn tri() -> Vec<DVec3> {
         vec![DVec3::ZERO, DVec3::X, DVec3::Y]
+    }
+
+    /// The scan picked at run time agrees with the portable one and with
+    /// the loop that names the first bad face, on faces with one corner out
+    /// of range or one repeated corner planted anywhere.
+    #[test]
+    fn the_faces_scan_finds_every_planted_error() {
+        let mut rng = crate::random::SplitMix64::new(5);
+        let n = 1000;
+        let mut faces: Vec<[u32; 3]> = (0..3000)
+            .map(|_| {
+                let a = rng.below(n - 2) as u32;
+                [a, a + 1, a + 2]
+            })
+            .collect();
+        assert!(valid_triangles(&faces, n) && valid_triangles_portable(&faces, n));
+        for trial in 0..200 {
+            let (f, k) = (rng.below(faces.len()), rng.below(3));
+            let kept = faces[f];
+            faces[f][k] = if trial % 2 == 0 { n as u32 + (trial as u32) } else { faces[f][(k + 1) % 3] };
+            let expected = check_triangles(&faces, n).is_ok();
+            assert!(!expected);
+            assert_eq!(valid_triangles(&faces, n), expected);
+            assert_eq!(valid_triangles_portable(&faces, n), expected);
+            faces[f] = kept;
+        }
     }
 
     #[test]

@@ -103,22 +103,27 @@ pub fn icosphere(level: u32) -> Result<TriMesh> {
 /// vertices followed by one new vertex per edge (in [`crate::Connectivity`]
 /// edge order, at the edge midpoint), and four faces per face: the three
 /// corner triangles of face `f` at `4 f`, `4 f + 1`, `4 f + 2` and the
-/// middle one at `4 f + 3`. Cost O(V + F).
+/// middle one at `4 f + 3`. Cost O(V + F); the new positions and faces
+/// are filled on [`crate::par`]'s threads.
 pub fn midpoint_subdivide(mesh: &TriMesh) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let (edges, halfedge_edge) = crate::connectivity::number_edges(mesh);
     let n = mesh.vertex_count() as u32;
     let p = mesh.positions();
-    let mut positions = Vec::with_capacity(p.len() + edges.len());
-    positions.extend_from_slice(p);
-    positions.extend(edges.iter().map(|&[a, b]| (p[a as usize] + p[b as usize]) * 0.5));
-    let mut faces = Vec::with_capacity(4 * mesh.face_count());
-    for (&[a, b, c], e) in mesh.faces().iter().zip(halfedge_edge.chunks_exact(3)) {
+    let positions = crate::par::map(p.len() + edges.len(), |i| match i.checked_sub(p.len()) {
+        None => p[i],
+        Some(e) => {
+            let [a, b] = edges[e];
+            (p[a as usize] + p[b as usize]) * 0.5
+        }
+    });
+    let faces = mesh.faces();
+    let faces = crate::par::map(faces.len(), |f| {
+        let [a, b, c] = faces[f];
+        let e = &halfedge_edge[3 * f..3 * f + 3];
         let [eab, ebc, eca] = [n + e[0], n + e[1], n + e[2]];
-        faces.push([a, eab, eca]);
-        faces.push([b, ebc, eab]);
-        faces.push([c, eca, ebc]);
-        faces.push([eab, ebc, eca]);
-    }
+        [[a, eab, eca], [b, ebc, eab], [c, eca, ebc], [eab, ebc, eca]]
+    })
+    .into_flattened();
     (positions, faces)
 }
 
