@@ -82,6 +82,7 @@ fn angle_defect(mesh: &TriMesh, options: &GaussianOptions) -> Result<GaussianCur
     let sums = par::scatter_batched(
         mesh.vertex_count(),
         mesh.faces(),
+        mesh.positions(),
         VertexSums::default(),
         |first| {
             let mut corners: CornerBatch = [[(0.0, 0.0); 3]; CORNER_BATCH];

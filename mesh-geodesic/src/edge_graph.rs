@@ -119,8 +119,8 @@ impl EdgeGraph {
     #[inline]
     pub(crate) fn prefetch_ring(&self, i: usize) {
         let start = self.offsets[i] as usize;
-        prefetch(&self.edges[start..]);
-        prefetch(&self.edges[(start + 5).min(self.offsets[i + 1] as usize)..]);
+        mesh_kernel::hint::prefetch(self.edges[start..].as_ptr());
+        mesh_kernel::hint::prefetch(self.edges[(start + 5).min(self.offsets[i + 1] as usize)..].as_ptr());
     }
 }
 
@@ -137,18 +137,4 @@ fn full_rings(conn: &Connectivity) -> Vec<bool> {
         }
     }
     full
-}
-
-/// Hints the processor to fetch the cache line of `data[0]`; nothing for an
-/// empty slice or on other architectures. Changes no value.
-#[inline]
-fn prefetch<T>(data: &[T]) {
-    #[cfg(target_arch = "x86_64")]
-    if let Some(x) = data.first() {
-        // SAFETY: `_mm_prefetch` only needs SSE, which every x86_64 processor
-        // has; a prefetch never faults and the address is a live reference.
-        unsafe { std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>((x as *const T).cast::<i8>()) };
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = data;
 }

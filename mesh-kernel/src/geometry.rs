@@ -361,9 +361,10 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
         // The common case on its own, with its closures inlined into the
         // loop by force: left to the compiler they were calls returning
         // through memory, 1.3-1.5x slower (2026-12-03).
-        NormalWeighting::Area => par::scatter(
+        NormalWeighting::Area => par::scatter_reading(
             n,
             faces,
+            p,
             DVec3::ZERO,
             #[inline(always)]
             |f| [double_area_vector(corners(f)); 3],
@@ -372,9 +373,10 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
         ),
         NormalWeighting::Max => {
             // With the area-weighted sum beside, for where Max's sum vanishes.
-            let sums = par::scatter(
+            let sums = par::scatter_reading(
                 n,
                 faces,
+                p,
                 [DVec3::ZERO; 2],
                 |f| {
                     let c = corners(f);
@@ -391,9 +393,10 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<DVec3> 
                 unit => unit,
             });
         }
-        _ => par::scatter(
+        _ => par::scatter_reading(
             n,
             faces,
+            p,
             DVec3::ZERO,
             |f| {
                 let c = corners(f);

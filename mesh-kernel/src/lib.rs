@@ -66,6 +66,7 @@ pub mod connectivity;
 pub mod conventions {}
 pub mod error;
 pub mod geometry;
+pub mod hint;
 pub mod ids;
 pub mod mesh;
 pub mod operators;

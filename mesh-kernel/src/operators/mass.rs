@@ -42,12 +42,13 @@ impl MassKind {
 
 /// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
 /// the Galerkin matrix, which equals the barycentric area. Isolated vertices
-/// get zero. O(F), on several threads ([`crate::par::scatter`]), with a
+/// get zero. O(F), on several threads ([`crate::par::scatter_reading`]), with a
 /// result that does not depend on their count.
 pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
-    crate::par::scatter(
+    crate::par::scatter_reading(
         mesh.vertex_count(),
         mesh.faces(),
+        mesh.positions(),
         0.0,
         |f| corner_masses(mesh.triangle(crate::FaceId::new(f)), kind),
         |m, share| *m += share,
