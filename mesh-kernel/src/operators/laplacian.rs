@@ -116,14 +116,23 @@ fn face_halfedge_cotans(mesh: &TriMesh, f: usize) -> [f64; 3] {
 /// over however many faces the edge has (one on the boundary). Negative for
 /// edges opposite obtuse angles (chapter section 2.2.2). O(F), in one pass
 /// over the faces, adding into the edges with [`par::scatter`] (several
-/// threads, each edge's sum in face order on any number of them).
+/// threads, each edge's sum in face order on any number of them), the
+/// corner positions of the face [`par::READ_AHEAD`] faces on asked for
+/// ahead (the cotan Laplacian at 470,274 vertices in Loop subdivision's
+/// order: 71-79 ms instead of 82-87 on one thread, 2026-12-06).
 pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
+    let (faces, p) = (mesh.faces(), mesh.positions());
     par::scatter(
         conn.edge_count(),
         conn.edges_by_face(),
         0.0,
-        |f| face_halfedge_cotans(mesh, f).map(|c| 0.5 * c),
+        |f| {
+            if let Some(ahead) = faces.get(f + par::READ_AHEAD) {
+                ahead.iter().for_each(|&v| crate::hint::prefetch(&p[v as usize]));
+            }
+            face_halfedge_cotans(mesh, f).map(|c| 0.5 * c)
+        },
         |w, c| *w += c,
     )
 }
