@@ -119,7 +119,8 @@ fn face_halfedge_cotans(mesh: &TriMesh, f: usize) -> [f64; 3] {
 /// threads, each edge's sum in face order on any number of them), the
 /// corner positions of the face [`par::READ_AHEAD`] faces on asked for
 /// ahead (the cotan Laplacian at 470,274 vertices in Loop subdivision's
-/// order: 71-79 ms instead of 82-87 on one thread, 2026-12-06).
+/// order, on one thread: 71-79 ms instead of 82-87 in one set of
+/// alternated rounds, 91-93 instead of 92-99 in another, 2026-12-06).
 pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
     let (faces, p) = (mesh.faces(), mesh.positions());
