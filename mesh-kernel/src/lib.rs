@@ -18,6 +18,7 @@
 //! | `solver` | sparse Cholesky / LU on faer, Dirichlet-constrained solves (feature `solver`, default) | |
 //! | [`precision`] | how precisely the coordinates were stored (single precision, decimal places or digits) and the position noise that left | |
 //! | [`par`] | parallel maps over index ranges: one threshold and task size for every crate (feature `rayon`) | |
+//! | [`hint`] | the processor's prefetch, for memory a loop will read a little later | |
 //! | [`random`] | `SplitMix64`, the one seeded generator (jitter, start blocks, tests) | |
 //! | [`reorder`] | cache-friendly vertex and face orders (a Hilbert curve through the bounding box), with the maps back | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
