@@ -304,10 +304,11 @@ where
 /// turn ([`crate::hint::prefetch`]). On meshes whose faces do not follow
 /// their vertices those reads are cache misses, which the processor could
 /// not overlap: at 470,274 vertices in Loop subdivision's order, on one
-/// thread, the Voronoi mass took 43-45 ms instead of 66-69, the
-/// Gaussian curvature ([`scatter_batched`]) 35-36 instead of 54, normals
-/// 15-15.4 instead of 18 (2026-12-06). Asking for the accumulators alone
-/// made normals slower (22-23 ms).
+/// thread, the Voronoi mass took 40.8-42.2 ms instead of 67.2-70.0, the
+/// Gaussian curvature ([`scatter_batched`]) 38.0-39.1 instead of
+/// 56.1-56.8, normals 14.6-16.6 instead of 18.2-18.6 (three alternated
+/// rounds, 2026-12-06). Asking for the accumulators alone made normals
+/// slower (18 to 22-23 ms).
 pub fn scatter_reading<A, V, I, R>(
     n: usize,
     faces: &[[I; 3]],
