@@ -8,8 +8,8 @@ use crate::ids::VertexId;
 /// Edges (or entries, when filling) between the one being placed and the
 /// one whose memory is asked for ahead: the cotan Laplacian at 470,274
 /// vertices in Loop subdivision's order took 80-82 ms instead of 89-94 on
-/// one thread and 52-58 instead of 59-64 on two, and the same in Hilbert
-/// order (three alternated rounds, 2026-12-06).
+/// one thread and 52-58 instead of 59-64 on two, and no faster nor slower
+/// in Hilbert order (three alternated rounds, 2026-12-06).
 const AHEAD: usize = crate::par::READ_AHEAD;
 
 /// CSR pattern with one diagonal entry per vertex and two entries per edge,
