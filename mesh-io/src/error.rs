@@ -213,6 +213,31 @@ impl From<std::io::Error> for IoError {
 /// Shorthand for results in this crate.
 pub type Result<T, E = IoError> = std::result::Result<T, E>;
 
+/// The location field of an [`IoError`] (by reference or by mutable
+/// reference, as `$error` is), or `None` for the variants without one.
+macro_rules! location_of {
+    ($error:expr) => {
+        match $error {
+            IoError::WrongMagic { at, .. }
+            | IoError::Syntax { at, .. }
+            | IoError::Truncated { at, .. }
+            | IoError::Count { at, .. }
+            | IoError::Index { at, .. }
+            | IoError::NonFinite { at, .. }
+            | IoError::Unsupported { at, .. }
+            | IoError::Mesh { at, .. }
+            | IoError::ExternalBuffer { at, .. }
+            | IoError::Precision { at, .. } => Some(at),
+            #[cfg(feature = "gltf")]
+            IoError::Gltf { at, .. } => Some(at),
+            IoError::Io { .. }
+            | IoError::UnknownFormat { .. }
+            | IoError::AttributeLength { .. }
+            | IoError::AttributeName { .. } => None,
+        }
+    };
+}
+
 impl IoError {
     /// Sets the file of the error's location (errors from byte-level readers
     /// know no path).
@@ -235,45 +260,11 @@ impl IoError {
 
     /// The location of the error in the input, if it has one.
     pub fn location(&self) -> Option<&Location> {
-        match self {
-            Self::WrongMagic { at, .. }
-            | Self::Syntax { at, .. }
-            | Self::Truncated { at, .. }
-            | Self::Count { at, .. }
-            | Self::Index { at, .. }
-            | Self::NonFinite { at, .. }
-            | Self::Unsupported { at, .. }
-            | Self::Mesh { at, .. }
-            | Self::ExternalBuffer { at, .. }
-            | Self::Precision { at, .. } => Some(at),
-            #[cfg(feature = "gltf")]
-            Self::Gltf { at, .. } => Some(at),
-            Self::Io { .. }
-            | Self::UnknownFormat { .. }
-            | Self::AttributeLength { .. }
-            | Self::AttributeName { .. } => None,
-        }
+        location_of!(self)
     }
 
     fn location_mut(&mut self) -> Option<&mut Location> {
-        match self {
-            Self::WrongMagic { at, .. }
-            | Self::Syntax { at, .. }
-            | Self::Truncated { at, .. }
-            | Self::Count { at, .. }
-            | Self::Index { at, .. }
-            | Self::NonFinite { at, .. }
-            | Self::Unsupported { at, .. }
-            | Self::Mesh { at, .. }
-            | Self::ExternalBuffer { at, .. }
-            | Self::Precision { at, .. } => Some(at),
-            #[cfg(feature = "gltf")]
-            Self::Gltf { at, .. } => Some(at),
-            Self::Io { .. }
-            | Self::UnknownFormat { .. }
-            | Self::AttributeLength { .. }
-            | Self::AttributeName { .. } => None,
-        }
+        location_of!(self)
     }
 
     /// An I/O error on `path`.
