@@ -70,6 +70,7 @@ pub(crate) fn status_of_kind(kind: mesh_kernel::VertexKind) -> VertexStatus {
 
 /// Counts of each status, for summaries.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[non_exhaustive]
 pub struct StatusCounts {
     /// Vertices with [`VertexStatus::Valid`].

@@ -91,23 +91,6 @@ impl Stats {
     }
 }
 
-/// Vertex counts per status of the tensor estimate.
-#[derive(Debug, Clone, Serialize)]
-pub struct Counts {
-    /// Interior vertices with an estimate.
-    pub valid: usize,
-    /// Boundary vertices (one-sided estimates).
-    pub boundary: usize,
-    /// Non-manifold vertices.
-    pub non_manifold: usize,
-    /// Vertices referenced by no face.
-    pub isolated: usize,
-    /// Vertices without an estimate (zero area, too few neighbours).
-    pub degenerate: usize,
-    /// Vertices whose fit is ill-conditioned on every neighbourhood tried.
-    pub ill_conditioned: usize,
-}
-
 /// Flagged vertices: the total and the count per reason (named as in
 /// `mesh_curvature::CurvatureFlag`).
 #[derive(Debug, Clone, Serialize)]
@@ -160,7 +143,7 @@ pub struct Summary {
     /// Vertices whose discrete values are flagged.
     pub flagged_discrete: Flagged,
     /// Status counts of the tensor estimate.
-    pub status: Counts,
+    pub status: StatusCounts,
     /// Wall time of the computation, in milliseconds.
     pub timings_ms: Timings,
 }
@@ -244,7 +227,6 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
 
     let trusted = |i: usize| c.flag[i].is_none();
     let trusted_discrete = |i: usize| c.flag_discrete[i].is_none();
-    let counts = StatusCounts::of(&t.status);
     let summary = Summary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -261,14 +243,7 @@ fn write_fields(args: &Args) -> CliResult<Summary> {
         mean_discrete: Stats::of(&c.mean_discrete, trusted_discrete),
         flagged: Flagged::of(c.flag_counts()),
         flagged_discrete: Flagged::of(c.discrete_flag_counts()),
-        status: Counts {
-            valid: counts.valid,
-            boundary: counts.boundary,
-            non_manifold: counts.non_manifold,
-            isolated: counts.isolated,
-            degenerate: counts.degenerate,
-            ill_conditioned: counts.ill_conditioned,
-        },
+        status: StatusCounts::of(&t.status),
         timings_ms: Timings { curvature: elapsed },
     };
     Ok(summary)
