@@ -57,6 +57,21 @@ pub struct WriteArgs {
     pub allow_precision_loss: bool,
 }
 
+/// `--json`, `--force` and the [`WriteArgs`] of a command that writes a mesh
+/// and prints a summary. A command whose flags say it otherwise changes the
+/// help with `#[command(mut_arg(..))]`.
+#[derive(Debug, clap::Args)]
+pub struct SaveArgs {
+    /// Print a JSON summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Allow writing over the input file.
+    #[arg(long)]
+    pub force: bool,
+    #[command(flatten)]
+    pub write: WriteArgs,
+}
+
 impl WriteArgs {
     /// `options` with this command line's choices.
     pub fn options(&self, options: mesh_io::WriteOptions) -> mesh_io::WriteOptions {

@@ -16,7 +16,7 @@ use mesh_kernel::TriMesh;
 use serde::Serialize;
 
 use crate::input::read_mesh;
-use crate::output::{check_output, print_json, write_mesh, CliResult, WriteArgs};
+use crate::output::{check_output, print_json, write_mesh, CliResult, SaveArgs};
 
 /// The largest plain-text point or polygon file read (bytes), and the
 /// longest line.
@@ -27,6 +27,8 @@ const MAX_RANDOM: usize = 1 << 26;
 
 /// Arguments of `mesh delaunay`.
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("json", |a| a.help("Print a JSON summary on standard output")))]
+#[command(mut_arg("force", |a| a.help("Allow an output to be the input file")))]
 pub struct Args {
     /// Points: a mesh file (its vertices' x and y are used) or a text file
     /// (.txt, .xy, .csv) of "x y" lines ('#' starts a comment).
@@ -59,14 +61,8 @@ pub struct Args {
     /// Output mesh (.obj, .ply, ...; z = 0).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
-    /// Print a JSON summary on standard output.
-    #[arg(long)]
-    json: bool,
-    /// Allow an output to be the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 impl Args {
@@ -87,7 +83,7 @@ impl Args {
 }
 
 /// The JSON summary.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Default, Serialize)]
 struct Summary {
     input: String,
     points: usize,
@@ -111,7 +107,7 @@ struct Summary {
 pub fn run(args: &Args) -> CliResult<()> {
     let input = args.input_file();
     for out in [&args.out, &args.voronoi].into_iter().flatten() {
-        check_output(out, input, args.force)?;
+        check_output(out, input, args.save.force)?;
     }
     if args.polygon.is_some() && args.voronoi.is_some() {
         return Err("--voronoi needs points (FILE or --random), not --polygon".into());
@@ -127,13 +123,8 @@ pub fn run(args: &Args) -> CliResult<()> {
                 duplicates: None,
                 vertices: m.points.len(),
                 triangles: m.triangles.len(),
-                flips: None,
-                sweep_violations: None,
-                violations: 0,
-                voronoi_cells: None,
-                min_angle_degrees: 0.0,
-                max_triangle_area: 0.0,
                 complete: Some(m.complete),
+                ..Summary::default()
             };
             if !m.complete {
                 eprintln!(
@@ -158,20 +149,14 @@ pub fn run(args: &Args) -> CliResult<()> {
                 duplicates: Some(d.duplicates),
                 vertices: points.len() - d.duplicates,
                 triangles: d.triangles.len(),
-                flips: None,
-                sweep_violations: None,
-                violations: 0,
-                voronoi_cells: None,
-                min_angle_degrees: 0.0,
-                max_triangle_area: 0.0,
-                complete: None,
+                ..Summary::default()
             };
             let triangles = if args.flips {
                 let sweep = sweep_triangulation(&points)?;
                 summary.sweep_violations = Some(check_empty_circumcircles(&points, &sweep, 1e-9)?.violations);
                 let f = lawson_flips(&points, &sweep, &LawsonOptions::default())?;
                 summary.flips = Some(f.flips);
-                if !args.json {
+                if !args.save.json {
                     println!("{} Lawson flips from the sweep triangulation", f.flips);
                 }
                 f.triangles
@@ -205,10 +190,10 @@ pub fn run(args: &Args) -> CliResult<()> {
     (summary.min_angle_degrees, summary.max_triangle_area) = (smallest, largest);
     if let Some(out) = &args.out {
         let mesh = TriMesh::new(points.iter().map(|p| p.extend(0.0)).collect(), triangles)?;
-        write_mesh(out, &mesh, &args.write.options(Default::default()))?;
+        write_mesh(out, &mesh, &args.save.write.options(Default::default()))?;
         eprintln!("wrote {} ({} vertices, {} triangles)", out.display(), mesh.vertex_count(), mesh.face_count());
     }
-    if args.json {
+    if args.save.json {
         print_json(&summary)?;
     } else {
         eprintln!(

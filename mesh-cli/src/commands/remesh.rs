@@ -12,10 +12,12 @@ use mesh_remesh::{remesh, RemeshOptions, RemeshReport, TopologySummary};
 use serde::Serialize;
 
 use crate::input::InputArgs;
-use crate::output::{check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
+use crate::output::{check_output, finite, print_json, write_mesh, CliResult, SaveArgs};
 
 /// Arguments of `mesh remesh`.
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("json", |a| a.help("Print the report as JSON on standard output")))]
+#[command(mut_arg("force", |a| a.help("Allow the output to be the input file")))]
 pub struct Args {
     #[command(flatten)]
     pub(crate) input: InputArgs,
@@ -40,14 +42,8 @@ pub struct Args {
     /// Output mesh (.obj, .off, .ply, .stl, .gltf, .glb).
     #[arg(long, value_name = "FILE")]
     out: PathBuf,
-    /// Print the report as JSON on standard output.
-    #[arg(long)]
-    json: bool,
-    /// Allow the output to be the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 impl Args {
@@ -198,7 +194,7 @@ fn summarize(input: String, output: String, source: &'static str, r: &RemeshRepo
 /// Runs `mesh remesh`. A changed topology is written and reported, then
 /// returned as an error (exit status 1).
 pub fn run(args: &Args) -> CliResult<()> {
-    check_output(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.save.force)?;
     let data = args.input.load()?;
     let mesh = data.mesh;
     let (h, source) = match args.edge_length {
@@ -216,9 +212,9 @@ pub fn run(args: &Args) -> CliResult<()> {
     let start = Instant::now();
     let r = remesh(&mesh, &options)?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
-    write_mesh(&args.out, MeshView::new(&r.mesh), &args.write.options(Default::default()))?;
+    write_mesh(&args.out, MeshView::new(&r.mesh), &args.save.write.options(Default::default()))?;
     let s = summarize(args.input.describe(), args.out.display().to_string(), source, &r.report, time_ms);
-    if args.json {
+    if args.save.json {
         print_json(&s)?;
     } else {
         print_text(&s);

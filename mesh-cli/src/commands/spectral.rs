@@ -27,7 +27,7 @@ use serde::Serialize;
 
 use crate::choice::choice;
 use crate::input::InputArgs;
-use crate::output::{binary_ply, check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
+use crate::output::{binary_ply, check_output, finite, print_json, write_mesh, CliResult, SaveArgs};
 
 /// Arguments of `mesh spectral`.
 #[derive(Debug, clap::Args)]
@@ -125,17 +125,12 @@ struct FilterArgs {
     /// Output mesh file (format from the extension).
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
-    /// Print a JSON summary.
-    #[arg(long)]
-    json: bool,
-    /// Allow writing over the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("json", |a| a.help("Print the summary and error curve as JSON")))]
 struct CompressArgs {
     #[command(flatten)]
     input: InputArgs,
@@ -147,14 +142,8 @@ struct CompressArgs {
     /// Output mesh file (the reconstruction).
     #[arg(long, value_name = "OUT.obj")]
     out: Option<PathBuf>,
-    /// Print the summary and error curve as JSON.
-    #[arg(long)]
-    json: bool,
-    /// Allow writing over the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -471,7 +460,7 @@ fn transfer(args: &FilterArgs) -> CliResult<Transfer> {
 }
 
 fn run_filter(args: &FilterArgs) -> CliResult<()> {
-    check_output(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.save.force)?;
     let data = args.input.load()?;
     let mesh = &data.mesh;
     let transfer = transfer(args)?;
@@ -479,7 +468,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
     let mh = harmonics(mesh, args.keep, &args.operator.options()?)?;
     let filtered = filter_mesh(mesh, &mh, &transfer)?;
     let time_ms = ms(start);
-    write_mesh(&args.out, &filtered, &args.write.options(Default::default()))?;
+    write_mesh(&args.out, &filtered, &args.save.write.options(Default::default()))?;
     let diagonal = mesh_kernel::geometry::bounding_box(mesh).map_or(1.0, |b| b.diagonal());
     let moved = mesh.positions().iter().zip(filtered.positions()).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
     let summary = FilterSummary {
@@ -490,7 +479,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
         max_displacement: finite(moved / diagonal),
         time_ms,
     };
-    if args.json {
+    if args.save.json {
         return print_json(&summary);
     }
     eprintln!("wrote {} ({}, {} harmonics, {:.1} ms)", summary.output, summary.transfer, summary.harmonics, time_ms);
@@ -499,7 +488,7 @@ fn run_filter(args: &FilterArgs) -> CliResult<()> {
 
 fn run_compress(args: &CompressArgs) -> CliResult<()> {
     if let Some(out) = &args.out {
-        check_output(out, args.input.path(), args.force)?;
+        check_output(out, args.input.path(), args.save.force)?;
     }
     let data = args.input.load()?;
     let mesh = &data.mesh;
@@ -512,7 +501,7 @@ fn run_compress(args: &CompressArgs) -> CliResult<()> {
     let (restored, error) = compress(mesh, &mh, args.keep)?;
     let time_ms = ms(start);
     if let Some(out) = &args.out {
-        write_mesh(out, &restored, &args.write.options(Default::default()))?;
+        write_mesh(out, &restored, &args.save.write.options(Default::default()))?;
     }
     let summary = CompressSummary {
         input: args.input.describe(),
@@ -523,7 +512,7 @@ fn run_compress(args: &CompressArgs) -> CliResult<()> {
         curve: curve.into_iter().map(Into::into).collect(),
         time_ms,
     };
-    if args.json {
+    if args.save.json {
         return print_json(&summary);
     }
     println!("{:>8} {:>12} {:>12} {:>12}", "keep", "rms", "vertex rms", "max");

@@ -19,7 +19,7 @@ use serde::Serialize;
 
 use crate::choice::choice;
 use crate::input::InputArgs;
-use crate::output::{check_output, finite, print_json, write_mesh, CliResult, WriteArgs};
+use crate::output::{check_output, finite, print_json, write_mesh, CliResult, SaveArgs};
 
 /// Arguments of `mesh subdivide`.
 #[derive(Debug, clap::Args)]
@@ -36,14 +36,8 @@ pub struct SubdivideArgs {
     /// Output mesh file (the format comes from the extension).
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
-    /// Print a JSON summary.
-    #[arg(long)]
-    json: bool,
-    /// Allow writing over the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 /// What `mesh subdivide --json` prints.
@@ -75,13 +69,13 @@ pub struct SubdivideSummary {
 /// Runs `mesh subdivide`.
 pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
     let scheme = args.scheme;
-    check_output(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.save.force)?;
     let data = args.input.load()?;
     let (mesh, dropped) = drop_unreferenced(&data.mesh)?;
     let start = Instant::now();
     let fine = subdivide(&mesh, &SubdivideOptions { scheme, levels: args.levels })?;
     let time_ms = start.elapsed().as_secs_f64() * 1e3;
-    write_mesh(&args.out, &fine, &args.write.options(Default::default()))?;
+    write_mesh(&args.out, &fine, &args.save.write.options(Default::default()))?;
     let summary = SubdivideSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -94,7 +88,7 @@ pub fn run_subdivide(args: &SubdivideArgs) -> CliResult<()> {
         faces: fine.face_count(),
         time_ms,
     };
-    if args.json {
+    if args.save.json {
         return print_json(&summary);
     }
     if dropped > 0 {
@@ -196,14 +190,8 @@ struct CompressArgs {
     /// Output mesh file.
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
-    /// Print a JSON summary.
-    #[arg(long)]
-    json: bool,
-    /// Allow writing over the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 #[derive(Debug, clap::Args)]
@@ -218,14 +206,8 @@ struct LodArgs {
     /// Output mesh file.
     #[arg(long, value_name = "OUT.obj")]
     out: PathBuf,
-    /// Print a JSON summary.
-    #[arg(long)]
-    json: bool,
-    /// Allow writing over the input file.
-    #[arg(long)]
-    force: bool,
     #[command(flatten)]
-    write: WriteArgs,
+    save: SaveArgs,
 }
 
 /// Coefficient magnitudes of one level.
@@ -324,7 +306,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         }
         WaveletCommand::Compress(a) => {
             let s = compress(a)?;
-            if a.json {
+            if a.save.json {
                 return print_json(&s);
             }
             eprintln!(
@@ -339,7 +321,7 @@ pub fn run(args: &Args) -> CliResult<()> {
         }
         WaveletCommand::Lod(a) => {
             let s = lod(a)?;
-            if a.json {
+            if a.save.json {
                 return print_json(&s);
             }
             eprintln!(
@@ -382,12 +364,12 @@ fn analyze(args: &AnalyzeArgs) -> CliResult<AnalyzeSummary> {
 
 fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
     let options = args.bank.options();
-    check_output(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.save.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
     let c = mr.compress(&CompressOptions { keep_fraction: args.keep_fraction })?;
     let out = c.multiresolution.synthesize()?;
-    write_mesh(&args.out, &out, &args.write.options(Default::default()))?;
+    write_mesh(&args.out, &out, &args.save.write.options(Default::default()))?;
     Ok(CompressSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
@@ -402,11 +384,11 @@ fn compress(args: &CompressArgs) -> CliResult<CompressSummary> {
 
 fn lod(args: &LodArgs) -> CliResult<LodSummary> {
     let options = args.bank.options();
-    check_output(&args.out, args.input.path(), args.force)?;
+    check_output(&args.out, args.input.path(), args.save.force)?;
     let data = args.input.load()?;
     let mr = Multiresolution::analyze(&data.mesh, &options)?;
     let mesh = mr.level(args.level)?;
-    write_mesh(&args.out, &mesh, &args.write.options(Default::default()))?;
+    write_mesh(&args.out, &mesh, &args.save.write.options(Default::default()))?;
     Ok(LodSummary {
         input: args.input.describe(),
         output: args.out.display().to_string(),
