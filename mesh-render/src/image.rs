@@ -2,7 +2,7 @@
 //! with rectangles, text in the bitmap font, copying of one picture into
 //! another and PNG encoding.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::error::{RenderError, Result};
 use crate::font::{self, GLYPH_HEIGHT, GLYPH_WIDTH};
@@ -37,6 +37,36 @@ pub struct Image {
 }
 
 /// Checks a picture size.
+/// Calls `pixel(t, y * w + x)` for every pixel of a `w` x `h` picture
+/// whose centre is within `radius` (at least sqrt(0.5)) of a sample of the
+/// segment `a b`, one sample every half pixel at `a + t (b - a)`; nothing
+/// when the segment is wholly outside the picture.
+pub(crate) fn segment_stamps(w: usize, h: usize, a: DVec2, b: DVec2, radius: f64, mut pixel: impl FnMut(f64, usize)) {
+    let (wf, hf) = (w as f64, h as f64);
+    // Wholly outside the picture (also guards the step count below).
+    if a.x.max(b.x) < -radius || a.y.max(b.y) < -radius || a.x.min(b.x) > wf + radius || a.y.min(b.y) > hf + radius {
+        return;
+    }
+    let steps = ((b - a).length() / 0.5).ceil().min(1e6) as usize + 1;
+    let r2 = (radius * radius).max(0.5);
+    for k in 0..=steps {
+        let t = k as f64 / steps as f64;
+        let p = a.lerp(b, t);
+        let (x0, x1) = ((p.x - radius).floor().max(0.0), (p.x + radius).ceil().min(wf - 1.0));
+        let (y0, y1) = ((p.y - radius).floor().max(0.0), (p.y + radius).ceil().min(hf - 1.0));
+        if x0 > x1 || y0 > y1 {
+            continue;
+        }
+        for y in y0 as usize..=y1 as usize {
+            for x in x0 as usize..=x1 as usize {
+                if (DVec2::new(x as f64 + 0.5, y as f64 + 0.5) - p).length_squared() <= r2 {
+                    pixel(t, y * w + x);
+                }
+            }
+        }
+    }
+}
+
 pub(crate) fn check_size(width: usize, height: usize) -> Result<()> {
     if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
         return Err(RenderError::Size { width, height });

@@ -5,7 +5,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::error::{RenderError, Result};
-use crate::image::{check_size, Image, WHITE};
+use crate::image::{check_size, segment_stamps, Image, WHITE};
 
 /// Samples per pixel along each axis.
 const SS: usize = 2;
@@ -197,27 +197,7 @@ fn fill_polygon(color: &mut [DVec3], w: usize, h: usize, px: &[DVec2], fill: DVe
 }
 
 fn stamp_segment(color: &mut [DVec3], w: usize, h: usize, a: DVec2, b: DVec2, radius: f64, c: DVec3) {
-    let (wf, hf) = (w as f64, h as f64);
-    if a.x.max(b.x) < -radius || a.y.max(b.y) < -radius || a.x.min(b.x) > wf + radius || a.y.min(b.y) > hf + radius {
-        return;
-    }
-    let steps = ((b - a).length() / 0.5).ceil().min(1e6) as usize + 1;
-    let r2 = (radius * radius).max(0.5);
-    for k in 0..=steps {
-        let p = a.lerp(b, k as f64 / steps as f64);
-        let (x0, x1) = ((p.x - radius).floor().max(0.0), (p.x + radius).ceil().min(wf - 1.0));
-        let (y0, y1) = ((p.y - radius).floor().max(0.0), (p.y + radius).ceil().min(hf - 1.0));
-        if x0 > x1 || y0 > y1 {
-            continue;
-        }
-        for y in y0 as usize..=y1 as usize {
-            for x in x0 as usize..=x1 as usize {
-                if (DVec2::new(x as f64 + 0.5, y as f64 + 0.5) - p).length_squared() <= r2 {
-                    color[y * w + x] = c;
-                }
-            }
-        }
-    }
+    segment_stamps(w, h, a, b, radius, |_, i| color[i] = c);
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use mesh_kernel::TriMesh;
 
 use crate::camera::{Projection, View};
 use crate::error::{RenderError, Result};
-use crate::image::{check_size, Image, WHITE};
+use crate::image::{check_size, segment_stamps, Image, WHITE};
 use crate::texture::Texture;
 
 /// Samples per pixel along each axis.
@@ -316,34 +316,12 @@ fn draw_segment(buffer: &mut Buffer, projection: &Projection, s: [DVec3; 2], sty
     let (a, za) = projection.project(s[0]);
     let (b, zb) = projection.project(s[1]);
     let radius = 0.5 * style.width * SS as f64;
-    let (w, h) = (buffer.w as f64, buffer.h as f64);
-    // Wholly outside the picture (also guards the step count below).
-    if a.x.max(b.x) < -radius || a.y.max(b.y) < -radius || a.x.min(b.x) > w + radius || a.y.min(b.y) > h + radius {
-        return;
-    }
-    let steps = ((b - a).length() / 0.5).ceil().min(1e6) as usize + 1;
-    let r2 = radius * radius;
-    for k in 0..=steps {
-        let t = k as f64 / steps as f64;
-        let p = a.lerp(b, t);
-        let z = za + t * (zb - za) + offset;
-        let (x0, x1) = ((p.x - radius).floor().max(0.0), (p.x + radius).ceil().min(w - 1.0));
-        let (y0, y1) = ((p.y - radius).floor().max(0.0), (p.y + radius).ceil().min(h - 1.0));
-        if x0 > x1 || y0 > y1 {
-            continue;
+    let Buffer { w, h, color, depth } = buffer;
+    segment_stamps(*w, *h, a, b, radius, |t, i| {
+        if za + t * (zb - za) + offset >= depth[i] {
+            color[i] = style.color;
         }
-        for y in y0 as usize..=y1 as usize {
-            for x in x0 as usize..=x1 as usize {
-                let d = DVec2::new(x as f64 + 0.5, y as f64 + 0.5) - p;
-                if d.length_squared() <= r2.max(0.5) {
-                    let i = y * buffer.w + x;
-                    if z >= buffer.depth[i] {
-                        buffer.color[i] = style.color;
-                    }
-                }
-            }
-        }
-    }
+    });
 }
 
 #[cfg(test)]
