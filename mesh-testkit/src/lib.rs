@@ -7,7 +7,8 @@
 //! - [`SplitMix64`]: a seeded, platform-independent random generator;
 //! - [`data::SHARED_MESHES`]: the ground-truth counts of the shared meshes;
 //! - [`read_raw`]: a minimal OFF / OBJ reader, for crates whose tests must
-//!   not depend on mesh-io.
+//!   not depend on mesh-io;
+//! - [`analytic`]: analytic ground truth (the unit disk's Neumann spectrum).
 //!
 //! Not published (`publish = false`): crates take it as a dev-dependency
 //! with a path and no version, which `cargo publish` removes from the
@@ -21,6 +22,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod analytic;
 pub mod data;
 mod raw;
 #[path = "../../mesh-kernel/src/random.rs"]

@@ -10,6 +10,7 @@ use mesh_kernel::{shapes, TriMesh};
 use mesh_spectral::{
     compression_curve, eigenpairs, EigenOptions, Eigenpairs, FillOrdering, HarmonicsOptions, ManifoldHarmonics,
 };
+use mesh_testkit::analytic::DISK_NEUMANN_EIGENVALUES as NEUMANN;
 
 use super::{convergence_order, no_shared_data, shared_data, Validator};
 
@@ -145,20 +146,6 @@ fn orderings(v: &mut Validator) {
     );
     pair_quality(v, name, &dissection, &mass);
 }
-
-/// The 8 smallest Neumann eigenvalues of the unit disk, (j'_{m,k})^2 with
-/// multiplicity 2 for m > 0 (zeros of J_m'): 0 | 3.39 x2 | 9.33 x2 | 14.68 |
-/// 17.65 x2.
-const NEUMANN: [f64; 8] = [
-    0.0,
-    3.389957716672,
-    3.389957716672,
-    9.328363213746,
-    9.328363213746,
-    14.681970642124,
-    17.649988519750,
-    17.649988519750,
-];
 
 /// Unit disk with 8, 16, 32 rings (mesh size halving): the relative error of
 /// the first 8 Neumann eigenvalues falls at second order (observed order
