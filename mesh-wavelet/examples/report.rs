@@ -5,43 +5,21 @@
 
 use std::sync::Arc;
 
-use mesh_kernel::{glam::DVec3, shapes, TriMesh};
-use mesh_wavelet::{decay_rate, FilterBank, Multiresolution, Scheme, SubdivideOptions, WaveletKind};
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use common::{bumpy_sphere, smooth_torus};
+use mesh_kernel::{shapes, TriMesh};
+use mesh_wavelet::{decay_rate, FilterBank, Multiresolution, Scheme, WaveletKind};
 
 /// The icosahedron split `levels` times with new vertices on the unit sphere.
 fn sphere(levels: u32) -> TriMesh {
     shapes::icosphere(levels).unwrap()
 }
 
-/// A torus base mesh split `levels` times, vertices projected onto the exact torus.
-fn torus(levels: usize) -> TriMesh {
-    let base = shapes::torus(2.0, 0.5, 12, 6).unwrap();
-    let fine = mesh_wavelet::subdivide(&base, &SubdivideOptions { scheme: Scheme::Midpoint, levels }).unwrap();
-    let p = fine
-        .positions()
-        .iter()
-        .map(|p| {
-            let u = p.y.atan2(p.x);
-            let c = DVec3::new(2.0 * u.cos(), 2.0 * u.sin(), 0.0);
-            c + (*p - c).normalize() * 0.5
-        })
-        .collect();
-    TriMesh::new(p, fine.faces().to_vec()).unwrap()
-}
-
-/// A bumpy sphere r = 1 + 0.1 sin(3x) sin(3y) sin(3z) on the icosphere.
-fn bumpy(levels: u32) -> TriMesh {
-    let s = sphere(levels);
-    let p = s
-        .positions()
-        .iter()
-        .map(|p| *p * (1.0 + 0.1 * (3.0 * p.x).sin() * (3.0 * p.y).sin() * (3.0 * p.z).sin()))
-        .collect();
-    TriMesh::new(p, s.faces().to_vec()).unwrap()
-}
-
 fn main() {
-    let mut shapes: Vec<(&str, TriMesh)> = vec![("sphere", sphere(5)), ("torus", torus(4)), ("bumpy", bumpy(5))];
+    let mut shapes: Vec<(&str, TriMesh)> =
+        vec![("sphere", sphere(5)), ("torus", smooth_torus(4)), ("bumpy", bumpy_sphere(5))];
     if let Some(holes) = mesh_testkit::shared_file("cgal_holes.off") {
         let data = mesh_io::read(&holes).unwrap_or_else(|e| panic!("{}: {e}", holes.display()));
         shapes.push(("cgal_holes.off", data.mesh));

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{base_meshes, real_mesh, relative_max_distance, shuffled, SplitMix64};
+use common::{base_meshes, fin_edge, real_mesh, relative_max_distance, shuffled, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
 use mesh_wavelet::{
     detect, subdivide, DetectOptions, Hierarchy, MultiresOptions, Multiresolution, Scheme, SubdivideOptions,
@@ -173,11 +173,7 @@ fn meshes_without_subdivision_connectivity_say_so() {
 
 #[test]
 fn bad_input_is_a_typed_error() {
-    let nonmanifold = TriMesh::new(
-        vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_Y],
-        vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]],
-    )
-    .unwrap();
+    let nonmanifold = fin_edge();
     assert!(matches!(detect(&nonmanifold, &Default::default()), Err(WaveletError::Mesh(MeshError::NonManifold(_)))));
     let empty = TriMesh::new(vec![], vec![]).unwrap();
     assert!(matches!(detect(&empty, &Default::default()), Err(WaveletError::Mesh(MeshError::Empty))));

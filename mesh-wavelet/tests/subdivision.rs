@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{base_meshes, real_mesh, SplitMix64};
+use common::{base_meshes, fin_edge, real_mesh, SplitMix64};
 use mesh_kernel::{glam::DVec3, shapes, MeshError, TriMesh};
 use mesh_wavelet::{rules::loop_beta, subdivide, Scheme, SubdivideOptions, WaveletError};
 use proptest::prelude::*;
@@ -174,11 +174,7 @@ fn degenerate_and_isolated_input() {
 
 #[test]
 fn bad_input_is_a_typed_error() {
-    let nonmanifold = TriMesh::new(
-        vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_Y],
-        vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]],
-    )
-    .unwrap();
+    let nonmanifold = fin_edge();
     for scheme in [Scheme::Loop, Scheme::Butterfly] {
         match subdivide(&nonmanifold, &SubdivideOptions { scheme, levels: 1 }) {
             Err(WaveletError::Mesh(MeshError::NonManifold(report))) => assert_eq!(report.edges.len(), 1),

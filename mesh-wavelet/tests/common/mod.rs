@@ -71,6 +71,12 @@ pub fn bumpy_sphere(levels: u32) -> TriMesh {
     TriMesh::new(p, s.faces().to_vec()).unwrap()
 }
 
+/// Three triangles on one edge (0, 1): a non-manifold mesh.
+pub fn fin_edge() -> TriMesh {
+    TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_Y], vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]])
+        .unwrap()
+}
+
 /// Base meshes with extraordinary vertices, boundaries and several components.
 pub fn base_meshes() -> Vec<(&'static str, TriMesh)> {
     let ico = shapes::icosphere(0).unwrap();
