@@ -32,19 +32,19 @@ fn shape_topology(v: &mut Validator) {
     ];
     for (name, mesh, chi, genus, loops) in cases {
         match mesh {
-            Ok(m) => {
-                let c = m.connectivity();
-                v.equal(format!("{name}: euler characteristic"), c.euler_characteristic(), chi);
-                v.equal(format!("{name}: genus"), c.genus().map_or(-1, |g| g as i64), genus as i64);
-                v.equal(
-                    format!("{name}: boundary loops"),
-                    c.boundary_loop_count().map_or(-1, |b| b as i64),
-                    loops as i64,
-                );
-            }
+            Ok(m) => topology(v, name, &m, chi, genus, loops),
             Err(e) => v.error(name, e),
         }
     }
+}
+
+/// Checks the Euler characteristic, genus and boundary loop count of `m`
+/// (-1 stands for an undefined genus or loop count).
+fn topology(v: &mut Validator, name: &str, m: &TriMesh, chi: i64, genus: u64, loops: usize) {
+    let c = m.connectivity();
+    v.equal(format!("{name}: euler characteristic"), c.euler_characteristic(), chi);
+    v.equal(format!("{name}: genus"), c.genus().map_or(-1, |g| g as i64), genus as i64);
+    v.equal(format!("{name}: boundary loops"), c.boundary_loop_count().map_or(-1, |b| b as i64), loops as i64);
 }
 
 /// The counts of the shared meshes' README (`mesh_testkit::data::SHARED_MESHES`).
@@ -57,16 +57,10 @@ fn shared_meshes(v: &mut Validator) {
         let (file, nv, nf, chi, genus, loops) = (m.name, m.vertices, m.faces, m.euler, m.genus, m.boundary_loops);
         match mesh_io::read(dir.join(file)) {
             Ok(data) => {
-                let (m, c) = (&data.mesh, data.mesh.connectivity());
+                let m = &data.mesh;
                 v.equal(format!("{file}: vertices"), m.vertex_count() as i64, nv as i64);
                 v.equal(format!("{file}: faces"), m.face_count() as i64, nf as i64);
-                v.equal(format!("{file}: euler characteristic"), c.euler_characteristic(), chi);
-                v.equal(format!("{file}: genus"), c.genus().map_or(-1, |g| g as i64), genus as i64);
-                v.equal(
-                    format!("{file}: boundary loops"),
-                    c.boundary_loop_count().map_or(-1, |b| b as i64),
-                    loops as i64,
-                );
+                topology(v, file, m, chi, genus, loops);
             }
             Err(e) => v.error(file, e),
         }
