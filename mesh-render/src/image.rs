@@ -67,6 +67,25 @@ pub(crate) fn segment_stamps(w: usize, h: usize, a: DVec2, b: DVec2, radius: f64
     }
 }
 
+/// `ss` x `ss` box filter of a `width * ss` x `height * ss` colour buffer
+/// (row-major) down to a `width` x `height` picture.
+pub(crate) fn downsample(color: &[DVec3], ss: usize, width: usize, height: usize) -> Result<Image> {
+    let w = width * ss;
+    let mut out = Vec::with_capacity(width * height * 3);
+    for y in 0..height {
+        for x in 0..width {
+            let mut sum = DVec3::ZERO;
+            for dy in 0..ss {
+                for dx in 0..ss {
+                    sum += color[(y * ss + dy) * w + x * ss + dx];
+                }
+            }
+            out.extend(to_rgb8(sum / (ss * ss) as f64));
+        }
+    }
+    Image::from_rgb(width, height, out)
+}
+
 pub(crate) fn check_size(width: usize, height: usize) -> Result<()> {
     if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
         return Err(RenderError::Size { width, height });

@@ -5,7 +5,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::error::{RenderError, Result};
-use crate::image::{check_size, segment_stamps, Image, WHITE};
+use crate::image::{check_size, downsample, segment_stamps, Image, WHITE};
 
 /// Samples per pixel along each axis.
 const SS: usize = 2;
@@ -150,19 +150,7 @@ impl Drawing {
             }
         };
         (0..3).for_each(&mut pass);
-        let mut out = Vec::with_capacity(width * height * 3);
-        for y in 0..height {
-            for x in 0..width {
-                let mut sum = DVec3::ZERO;
-                for dy in 0..SS {
-                    for dx in 0..SS {
-                        sum += color[(y * SS + dy) * w + x * SS + dx];
-                    }
-                }
-                out.extend(crate::image::to_rgb8(sum / (SS * SS) as f64));
-            }
-        }
-        Image::from_rgb(width, height, out)
+        downsample(&color, SS, width, height)
     }
 }
 

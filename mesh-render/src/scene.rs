@@ -11,7 +11,7 @@ use mesh_kernel::TriMesh;
 
 use crate::camera::{Projection, View};
 use crate::error::{RenderError, Result};
-use crate::image::{check_size, segment_stamps, Image, WHITE};
+use crate::image::{check_size, downsample, segment_stamps, Image, WHITE};
 use crate::texture::Texture;
 
 /// Samples per pixel along each axis.
@@ -237,19 +237,7 @@ struct Buffer {
 impl Buffer {
     /// SS x SS box filter down to the output size.
     fn downsample(&self, width: usize, height: usize) -> Result<Image> {
-        let mut out = Vec::with_capacity(width * height * 3);
-        for y in 0..height {
-            for x in 0..width {
-                let mut sum = DVec3::ZERO;
-                for dy in 0..SS {
-                    for dx in 0..SS {
-                        sum += self.color[(y * SS + dy) * self.w + x * SS + dx];
-                    }
-                }
-                out.extend(crate::image::to_rgb8(sum / (SS * SS) as f64));
-            }
-        }
-        Image::from_rgb(width, height, out)
+        downsample(&self.color, SS, width, height)
     }
 }
 
