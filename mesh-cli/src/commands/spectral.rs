@@ -600,22 +600,9 @@ impl Args {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::Parser;
-
-    #[derive(Parser)]
-    struct Cli {
-        #[command(subcommand)]
-        command: Top,
-    }
-
-    #[derive(clap::Subcommand)]
-    enum Top {
-        Spectral(Args),
-    }
 
     fn parse(args: &[&str]) -> Args {
-        let Top::Spectral(a) = Cli::parse_from(["mesh", "spectral"].into_iter().chain(args.iter().copied())).command;
-        a
+        crate::commands::parse_args("spectral", args)
     }
 
     #[test]
@@ -662,8 +649,9 @@ mod tests {
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "500"])).is_err());
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--laplacian", "nope"])).is_err());
         assert!(run(&parse(&["--shape", "icosphere", "--res", "1", "--k", "0"])).is_err());
-        let some = Cli::try_parse_from(["mesh", "spectral", "--shape", "icosphere", "--component", "some"]);
-        let message = some.err().expect("an unknown component is refused").to_string();
+        let some =
+            crate::commands::try_parse_args::<Args>("spectral", &["--shape", "icosphere", "--component", "some"]);
+        let message = some.expect_err("an unknown component is refused").to_string();
         assert!(message.contains("some") && message.contains("largest"), "{message}");
     }
 

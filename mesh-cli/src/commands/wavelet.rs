@@ -470,43 +470,16 @@ impl Args {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::Parser;
-
-    #[derive(Parser)]
-    struct Cli {
-        #[command(subcommand)]
-        command: Top,
-    }
-
-    #[derive(clap::Subcommand)]
-    enum Top {
-        Subdivide(SubdivideArgs),
-        Wavelet(Args),
-    }
-
-    fn parse(args: &[&str]) -> Top {
-        Cli::parse_from(std::iter::once("mesh").chain(args.iter().copied())).command
-    }
+    use crate::commands::{parse_args, try_parse_args};
 
     fn shuffled_subdivided_icosahedron(dir: &std::path::Path) -> (PathBuf, TriMesh) {
         // Subdivide, write, reverse the vertex order: the file has lost its hierarchy.
         let path = dir.join("ico.obj");
         let out = path.to_str().unwrap();
-        let Top::Subdivide(a) = parse(&[
+        let a: SubdivideArgs = parse_args(
             "subdivide",
-            "--shape",
-            "icosphere",
-            "--res",
-            "0",
-            "--scheme",
-            "loop",
-            "--levels",
-            "3",
-            "--out",
-            out,
-        ]) else {
-            unreachable!()
-        };
+            &["--shape", "icosphere", "--res", "0", "--scheme", "loop", "--levels", "3", "--out", out],
+        );
         run_subdivide(&a).unwrap();
         let m = mesh_io::read(&path).unwrap().mesh;
         let n = m.vertex_count() as u32;
@@ -522,21 +495,21 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         for scheme in ["midpoint", "loop", "butterfly"] {
             let out = dir.path().join(format!("{scheme}.obj"));
-            let Top::Subdivide(a) = parse(&[
+            let a: SubdivideArgs = parse_args(
                 "subdivide",
-                "--shape",
-                "torus",
-                "--res",
-                "4",
-                "--scheme",
-                scheme,
-                "--levels",
-                "2",
-                "--out",
-                out.to_str().unwrap(),
-            ]) else {
-                unreachable!()
-            };
+                &[
+                    "--shape",
+                    "torus",
+                    "--res",
+                    "4",
+                    "--scheme",
+                    scheme,
+                    "--levels",
+                    "2",
+                    "--out",
+                    out.to_str().unwrap(),
+                ],
+            );
             run_subdivide(&a).unwrap();
             let m = mesh_io::read(&out).unwrap().mesh;
             let input = mesh_kernel::shapes::by_name("torus", 4).unwrap();
@@ -545,8 +518,8 @@ mod tests {
                 assert_eq!(&m.positions()[..input.vertex_count()], input.positions());
             }
         }
-        let cubic = Cli::try_parse_from(["mesh", "subdivide", "--scheme", "cubic", "--out", "x.obj"]);
-        let message = cubic.err().expect("an unknown scheme is refused").to_string();
+        let cubic = try_parse_args::<SubdivideArgs>("subdivide", &["--scheme", "cubic", "--out", "x.obj"]);
+        let message = cubic.expect_err("an unknown scheme is refused").to_string();
         assert!(message.contains("cubic") && message.contains("butterfly"), "{message}");
     }
 
@@ -554,10 +527,7 @@ mod tests {
     fn analyze_a_file_that_lost_its_hierarchy() {
         let dir = tempfile::tempdir().unwrap();
         let (path, _) = shuffled_subdivided_icosahedron(dir.path());
-        let Top::Wavelet(a) = parse(&["wavelet", "analyze", path.to_str().unwrap(), "--json", "--scheme", "loop"])
-        else {
-            unreachable!()
-        };
+        let a: Args = parse_args("wavelet", &["analyze", path.to_str().unwrap(), "--json", "--scheme", "loop"]);
         let WaveletCommand::Analyze(a) = a.command else { unreachable!() };
         let s = analyze(&a).unwrap();
         assert_eq!((s.levels, s.base_vertices, s.base_faces), (3, 12, 20));
@@ -579,18 +549,10 @@ mod tests {
         let mut last = f64::INFINITY;
         for keep in ["0", "0.05", "0.3", "1"] {
             let out = dir.path().join(format!("c{keep}.obj"));
-            let Top::Wavelet(a) = parse(&[
+            let a: Args = parse_args(
                 "wavelet",
-                "compress",
-                file,
-                "--keep-fraction",
-                keep,
-                "--out",
-                out.to_str().unwrap(),
-                "--json",
-            ]) else {
-                unreachable!()
-            };
+                &["compress", file, "--keep-fraction", keep, "--out", out.to_str().unwrap(), "--json"],
+            );
             let WaveletCommand::Compress(a) = a.command else { unreachable!() };
             let s = compress(&a).unwrap();
             let rms = s.rms_error.unwrap();
@@ -603,33 +565,26 @@ mod tests {
         }
         assert!(last < 1e-12);
         let out = dir.path().join("lod.obj");
-        let Top::Wavelet(a) =
-            parse(&["wavelet", "lod", file, "--level", "3", "--out", out.to_str().unwrap(), "--wavelet", "lazy"])
-        else {
-            unreachable!()
-        };
+        let a: Args =
+            parse_args("wavelet", &["lod", file, "--level", "3", "--out", out.to_str().unwrap(), "--wavelet", "lazy"]);
         let WaveletCommand::Lod(a) = a.command else { unreachable!() };
         let s = lod(&a).unwrap();
         assert_eq!(s.vertices, input.vertex_count());
         let m = mesh_io::read(&out).unwrap().mesh;
         assert_eq!(m.faces(), input.faces());
         assert!(max_distance(&m, &input) < 1e-12);
-        let Top::Wavelet(a) = parse(&["wavelet", "lod", file, "--level", "4", "--out", out.to_str().unwrap()]) else {
-            unreachable!()
-        };
+        let a: Args = parse_args("wavelet", &["lod", file, "--level", "4", "--out", out.to_str().unwrap()]);
         let WaveletCommand::Lod(a) = a.command else { unreachable!() };
         assert!(lod(&a).is_err());
     }
 
     #[test]
     fn meshes_without_subdivision_connectivity_fail_cleanly() {
-        let Top::Wavelet(a) = parse(&["wavelet", "analyze", "--shape", "uv-sphere", "--res", "8"]) else {
-            unreachable!()
-        };
+        let a: Args = parse_args("wavelet", &["analyze", "--shape", "uv-sphere", "--res", "8"]);
         let e = run(&a).unwrap_err();
         assert!(e.to_string().contains("subdivision connectivity"), "{e}");
-        let haar = Cli::try_parse_from(["mesh", "wavelet", "analyze", "--wavelet", "haar"]);
-        let message = haar.err().expect("an unknown wavelet is refused").to_string();
+        let haar = try_parse_args::<Args>("wavelet", &["analyze", "--wavelet", "haar"]);
+        let message = haar.expect_err("an unknown wavelet is refused").to_string();
         assert!(message.contains("haar") && message.contains("lifted"), "{message}");
     }
 }
