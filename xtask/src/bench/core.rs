@@ -28,6 +28,33 @@ fn stream_copy() -> Operation<'static> {
     .moving(16 * STREAM_LEN)
 }
 
+/// Elements of [`gather_copy`]: 2^22, 96 MiB of records copied.
+const GATHER_LEN: usize = 1 << 22;
+
+/// What memory gives a gather in random order from an array of `n`
+/// positions (as many as the mesh has vertices): `dst[i] = src[index[i]]`
+/// for [`GATHER_LEN`] random indices below `n`, 52 bytes of records and
+/// indices moved per element, split between the threads of the pool. Next
+/// to `stream_copy` (every line used in full and foreseen by the
+/// processor), it bounds operations that read the positions of vertices
+/// scattered in memory: each 24-byte record costs a line fetched on demand,
+/// from the cache level that holds `n` positions.
+fn gather_copy(n: usize) -> Operation<'static> {
+    use rayon::prelude::*;
+    let src: Vec<[f64; 3]> = (0..n).map(|i| [i as f64, 0.5, -1.0]).collect();
+    let mut rng = mesh_kernel::random::SplitMix64::new(15);
+    let index: Vec<u32> = (0..GATHER_LEN).map(|_| rng.below(n) as u32).collect();
+    let mut dst = vec![[0.0; 3]; GATHER_LEN];
+    Operation::new("gather_copy", move || {
+        let chunk = GATHER_LEN.div_ceil(rayon::current_num_threads());
+        dst.par_chunks_mut(chunk).zip(index.par_chunks(chunk)).for_each(|(d, ix)| {
+            d.iter_mut().zip(ix).for_each(|(d, &i)| *d = src[i as usize]);
+        });
+        Ok(dst[GATHER_LEN / 2][0])
+    })
+    .moving(52 * GATHER_LEN)
+}
+
 /// Multiply-adds of [`multiply_add`], split between the threads of the pool.
 const MULTIPLY_ADDS: usize = 1 << 28;
 
@@ -82,6 +109,7 @@ pub fn operations<'a>(path: &'a Path, data: &'a MeshData) -> Vec<Operation<'a>> 
     let halfedges = 12 * mesh.face_count() + 24 * mesh.face_count() + 4 * n;
     vec![
         stream_copy(),
+        gather_copy(n.max(1)),
         multiply_add(),
         Operation::new("read", move || Ok(mesh_io::read(path)?)),
         Operation::on_fresh("connectivity", mesh, |m| {

@@ -39,7 +39,8 @@ pub struct Operation<'a> {
     pub run: Box<dyn FnMut() -> Result<Sample> + Send + 'a>,
     /// The least memory traffic of one run in bytes (inputs read once,
     /// outputs written once), for operations bound by memory bandwidth:
-    /// the achieved GB/s is printed next to the machine's `stream_copy`.
+    /// the achieved GB/s is printed, to read next to the machine's
+    /// `stream_copy` and `gather_copy`.
     pub bytes: Option<usize>,
 }
 
