@@ -1,8 +1,8 @@
 //! Derived quantities of a mesh, computed once on first use and kept with
 //! it (in the spirit of geometry-central's `require*` quantities): every
-//! crate that asks [`TriMesh::geometry`] for face areas, angles, normals,
-//! lumped masses, cotangents, Laplacians, gradient or divergence gets the
-//! same values, computed once. Moving vertices
+//! crate that asks [`TriMesh::geometry`] for the bounding box, face areas,
+//! angles, normals, lumped masses, cotangents, Laplacians, gradient or
+//! divergence gets the same values, computed once. Moving vertices
 //! ([`TriMesh::positions_mut`], [`TriMesh::set_positions`]) empties the
 //! cache; [`TriMesh::forget_geometry`] frees it.
 //!
@@ -25,13 +25,14 @@ use glam::DVec3;
 use sprs::CsMat;
 
 use crate::error::Result;
-use crate::geometry::{self, NormalWeighting};
+use crate::geometry::{self, Aabb, NormalWeighting};
 use crate::mesh::TriMesh;
 use crate::operators::{self, IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
 
 /// The stored quantities; empty until asked for.
 #[derive(Clone, Default)]
 pub(crate) struct Cache {
+    bounding_box: OnceLock<Option<Aabb>>,
     face_areas: OnceLock<Vec<f64>>,
     face_normals: OnceLock<Vec<DVec3>>,
     corner_angles: OnceLock<Vec<[f64; 3]>>,
@@ -57,6 +58,16 @@ pub struct Geometry<'a> {
 impl<'a> Geometry<'a> {
     pub(crate) fn new(mesh: &'a TriMesh, cache: &'a Cache) -> Self {
         Self { mesh, cache }
+    }
+
+    /// The box of all vertices, `None` without vertices
+    /// ([`geometry::bounding_box`]). Every operation that works in the
+    /// mesh's [`crate::units::length_unit`] (normals, curvatures, geodesics,
+    /// parameterizations) asks for it: at 470,274 vertices it took 1.2 ms on
+    /// one thread each time, a tenth of the area-weighted normals
+    /// (2026-12-06).
+    pub fn bounding_box(&self) -> Option<Aabb> {
+        *self.cache.bounding_box.get_or_init(|| geometry::bounding_box(self.mesh))
     }
 
     /// Area of every face ([`geometry::face_areas`]).
@@ -155,9 +166,12 @@ mod tests {
         let g = m.geometry();
         assert_eq!(g.lumped_mass(MassKind::Barycentric), &operators::lumped_mass(&m, MassKind::Barycentric)[..]);
         assert_eq!(g.laplacian(LaplacianKind::Cotan).unwrap(), &operators::cotan_laplacian(&m));
-        let first = g.face_areas().to_vec();
+        assert_eq!(g.bounding_box(), crate::geometry::bounding_box(&m));
+        let (first, first_box) = (g.face_areas().to_vec(), g.bounding_box().unwrap());
         m.positions_mut().iter_mut().for_each(|p| *p *= 2.0);
         let again = m.geometry().face_areas().to_vec();
+        let again_box = m.geometry().bounding_box().unwrap();
+        assert_eq!((2.0 * first_box.min, 2.0 * first_box.max), (again_box.min, again_box.max));
         for (a, b) in first.iter().zip(&again) {
             assert!((4.0 * a - b).abs() <= 1e-12 * b);
         }

@@ -10,7 +10,7 @@
 //! | [`mesh`] | [`TriMesh`]: validated `f64` positions and triangles | 2.2.2 |
 //! | [`ids`] | typed indices [`VertexId`], [`FaceId`], [`EdgeId`], [`HalfedgeId`] | |
 //! | [`connectivity`] | half-edges, edges, ordered 1-rings, boundary loops, components, manifold report, Euler characteristic and genus (eq. 2.6-2.7) | 2.2.2, 2.3 |
-//! | [`cache`] | [`Geometry`]: derived quantities (areas, angles, normals, masses, Laplacians, gradient, divergence) computed once per mesh on first use, shared by every crate | |
+//! | [`cache`] | [`Geometry`]: derived quantities (bounding box, areas, angles, normals, masses, Laplacians, gradient, divergence) computed once per mesh on first use, shared by every crate | |
 //! | [`choice`] | named choices: one list of names per selectable enum, parsed and displayed alike | |
 //! | [`clean`] | welding, degenerate / duplicate / unreferenced removal, orientation, with a report | |
 //! | [`geometry`] | areas, normals, angles, edge lengths, dihedral angles, feature edges, bounding box, volume | 2.2.2 |

@@ -14,7 +14,7 @@
 
 use std::borrow::Cow;
 
-use crate::geometry::{power_of_two_near, Aabb};
+use crate::geometry::power_of_two_near;
 use crate::mesh::TriMesh;
 
 /// Sizes in `[2^-SAFE, 2^SAFE]` are used as they are by [`normalized`].
@@ -22,9 +22,11 @@ const SAFE: i32 = 100;
 
 /// A power of two near the half-extent of the mesh's bounding box (its
 /// largest side divided by two): `unit <= half-extent < 2 unit`. 1 for a
-/// mesh without vertices or with all vertices at one point. O(V).
+/// mesh without vertices or with all vertices at one point. O(V) the
+/// first time, O(1) after: the box is kept with the mesh
+/// ([`crate::cache::Geometry::bounding_box`]).
 pub fn length_unit(mesh: &TriMesh) -> f64 {
-    let Some(b) = Aabb::of(mesh.positions()) else { return 1.0 };
+    let Some(b) = mesh.geometry().bounding_box() else { return 1.0 };
     // Halves first: max - min may overflow, max / 2 - min / 2 cannot.
     let half_extent = (b.max * 0.5 - b.min * 0.5).max_element();
     if half_extent > 0.0 {

@@ -50,7 +50,9 @@ pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
         mesh.faces(),
         mesh.positions(),
         0.0,
+        #[inline(always)]
         |f| corner_masses(mesh.triangle(crate::FaceId::new(f)), kind),
+        #[inline(always)]
         |m, share| *m += share,
     )
 }
