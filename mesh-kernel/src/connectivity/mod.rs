@@ -559,6 +559,7 @@ mod tests {
     }
 
     /// Everything a connectivity answers, for comparing two builds.
+    #[cfg(feature = "rayon")]
     fn snapshot(c: &Connectivity) -> impl PartialEq + std::fmt::Debug {
         let halfedges = (0..c.halfedge_count() as u32).map(HalfedgeId);
         let vertices = (0..c.vertex_count()).map(VertexId::new);
