@@ -766,6 +766,10 @@ mod tests {
             for threads in [2, 3, 8] {
                 assert!(one.iter().zip(run(threads)).all(|(a, b)| a.to_bits() == b.to_bits()), "{threads} threads");
             }
+            // From outside any pool (one part per thread of the global pool).
+            let outside =
+                scatter(n, &faces, 0.0f64, |f| [1.0 / (f as f64 + 1.0), 0.1, (f as f64).sqrt()], |a, x| *a += x);
+            assert!(one.iter().zip(outside).all(|(a, b)| a.to_bits() == b.to_bits()), "outside the pool");
         }
     }
 
