@@ -402,8 +402,7 @@ where
 {
     // One thread runs one loop.
     let threads = threads();
-    let parts =
-        if threads < 2 { 1 } else { (parts_per_thread() * threads).min(MAX_PARTS).min(faces.len() / SCATTER_CHUNK) };
+    let parts = part_count(threads).min(MAX_PARTS).min(faces.len() / SCATTER_CHUNK);
     let mut out = if parts >= 2 { map(n, |_| init.clone()) } else { vec![init; n] };
     // Part boundaries at whole batches, so that batches do not depend on them.
     let step = B.max(1);
@@ -438,22 +437,29 @@ where
     out
 }
 
-/// Parts of a [`scatter`] per thread. Called from a task of the pool (the
-/// other side of a `join`, as the cotan Laplacian's weights beside its
-/// pattern), four, so that threads busy elsewhere leave theirs to the
-/// others; called from outside it, when every thread is free, one, which
-/// sets aside the fewest corners: at 470,274 vertices in file order on two
-/// threads, normals took 7.3-8.0 ms instead of 7.4-9.6 with four, the
+/// Parts of a [`scatter`] on `threads` threads. Called from outside the
+/// pool, when every thread is free, one per thread, which sets aside the
+/// fewest corners: at 470,274 vertices in file order on two threads,
+/// normals took 7.3-8.0 ms instead of 7.4-9.6 with four per thread, the
 /// Gaussian curvature 16.3-17.5 instead of 16.9-18.3, the Voronoi mass
-/// 18.6-19.4 instead of 19.6-20.7 (six alternated rounds, 2026-12-06),
-/// while one part per thread made the cotan Laplacian, whose weights run
-/// beside its pattern, slower.
-fn parts_per_thread() -> usize {
+/// 18.6-19.4 instead of 19.6-20.7 (six alternated rounds, 2026-12-06).
+/// Called from a task of the pool (the cotan Laplacian's weights, beside
+/// its pattern on the other side of a `join`), the task's siblings keep
+/// other threads busy: on two threads, the only other one, so one loop,
+/// which skips an [`owners`] pass that no thread would share (the cotan
+/// Laplacian took 28.0-29.5 ms instead of 30.9-33.5 with eight parts, three
+/// alternated rounds, 2026-12-06); on more, four per thread, so that
+/// threads busy elsewhere leave theirs to the others.
+fn part_count(threads: usize) -> usize {
     #[cfg(feature = "rayon")]
     if rayon::current_thread_index().is_none() {
-        return 1;
+        return threads;
     }
-    4
+    if threads <= 2 {
+        1
+    } else {
+        4 * threads
+    }
 }
 
 /// Most parts of a [`scatter`] (at most 255, for [`owners`]' bytes): each
@@ -483,24 +489,29 @@ impl<A> DisjointSlots<A> {
 
 /// The part of a [`scatter`] that owns each vertex: the first part (faces
 /// `bounds[k]..bounds[k + 1]`) with the vertex as a corner, [`NO_PART`]
-/// where none but the last has it. A run per thread (up to [`MAX_RUNS`])
-/// scans its parts' faces backwards, storing each face's part at its
-/// corners, so that the first face's part is the one left; plain byte
-/// stores, which do not wait for each other as setting bits in a word did
-/// (2026-12-05: 0.5-0.9 ms against 1.6-2.8 ms at 940,544 faces on two
-/// threads). The runs' arrays are merged run by run, each vertex keeping
-/// the first run's part.
+/// where none but the last has it. The faces of every part but the last
+/// are split into a run per thread (up to [`MAX_RUNS`]); each run scans
+/// its faces backwards, storing each face's part at its corners, so that
+/// the first face's part is the one left; plain byte stores, which do not
+/// wait for each other as setting bits in a word did (2026-12-05: 0.5-0.9
+/// ms against 1.6-2.8 ms at 940,544 faces on two threads). The runs'
+/// arrays are merged run by run, each vertex keeping the first run's part.
+/// Runs by faces rather than by parts share the work among the threads
+/// whatever the part count: with two parts, one run per thread instead of
+/// one run in all.
 fn owners<I: Copy + Sync>(n: usize, faces: &[[I; 3]], bounds: &[usize]) -> Vec<u8>
 where
     u32: From<I>,
 {
-    let scanned = bounds.len() - 2;
-    let runs = threads().min(MAX_RUNS).clamp(1, scanned);
-    let run_parts = |r: usize| r * scanned / runs..(r + 1) * scanned / runs;
+    let parts = bounds.len() - 1;
+    let scanned = bounds[parts - 1];
+    let runs = threads().min(MAX_RUNS).clamp(1, scanned.div_ceil(SCATTER_CHUNK).max(1));
     let mut arrays = map_heavy(runs, |r| {
+        let (first, end) = (r * scanned / runs, (r + 1) * scanned / runs);
         let mut owner = vec![NO_PART; n];
-        for k in run_parts(r).rev() {
-            for tri in faces[bounds[k]..bounds[k + 1]].iter().rev() {
+        for k in (0..parts - 1).rev() {
+            let (lo, hi) = (bounds[k].max(first), bounds[k + 1].min(end));
+            for tri in faces[lo..hi.max(lo)].iter().rev() {
                 for &v in tri {
                     owner[u32::from(v) as usize] = k as u8;
                 }
@@ -584,10 +595,13 @@ fn each_corner<V: Copy, I: Copy, const B: usize>(
     }
 }
 
-/// Whether, judged from every 61st face, at most one corner in eight
+/// Whether, judged from every 509th face, at most one corner in eight
 /// would be set aside: otherwise setting corners aside costs more than
 /// more threads gain (faces in random order), and [`scatter`] runs one
-/// loop.
+/// loop. At least 128 faces of every part of [`SCATTER_CHUNK`] or more
+/// tell the 1-2% of corners set aside on a mesh in order from the half on
+/// a shuffled one; every 61st face took 0.2-0.4 ms at 940,544 faces, each
+/// a cache miss, every 509th 0.05-0.1 ms (2026-12-06).
 fn mostly_owned<I: Copy>(faces: &[[I; 3]], bounds: &[usize], owner: &[u8]) -> bool
 where
     u32: From<I>,
@@ -596,7 +610,7 @@ where
     let parts = bounds.len() - 1;
     for k in 0..parts {
         let mine = owner_entry(k, parts);
-        for tri in faces[bounds[k]..bounds[k + 1]].iter().step_by(61) {
+        for tri in faces[bounds[k]..bounds[k + 1]].iter().step_by(509) {
             corners += 3;
             aside += tri.iter().filter(|&&v| owner[u32::from(v) as usize] != mine).count();
         }
@@ -730,10 +744,11 @@ mod tests {
     #[cfg(feature = "rayon")]
     #[test]
     fn owners_are_the_first_parts_with_the_vertex_on_any_thread_count() {
-        let m = 20_000;
-        let faces = shuffled(strip(m), 5, 3000);
+        // Runs of the scan (one per thread, up to four) begin inside parts.
+        let m = 3 * SCATTER_CHUNK;
+        let faces = shuffled(strip(m), 5, 30_000);
         let n = m + 10;
-        let bounds = [0, 7_000, 15_000, 22_000, 31_000, 2 * m];
+        let bounds = [0, 70_000, 150_000, 220_000, 310_000, 2 * m];
         let mut expect = vec![NO_PART; n];
         for k in (0..bounds.len() - 2).rev() {
             for tri in &faces[bounds[k]..bounds[k + 1]] {
