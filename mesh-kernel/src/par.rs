@@ -206,26 +206,41 @@ where
     // written once. One run writes them straight into the result.
     if runs == 1 {
         let mut grouped: Vec<T> = vec![T::from(0); G * len];
-        place(records(0), fills[0].clone(), &keys, &values, |p, x| grouped[p] = x);
+        let at = grouped.as_ptr();
+        place(records(0), fills[0].clone(), &keys, &values, at, |p, x| grouped[p] = x);
         return (offsets, grouped);
     }
     let slots = atomic_slots64(G * len);
-    map_heavy(runs, |r| place(records(r), fills[r].clone(), &keys, &values, |p, x| slots[p].store(x.into(), Relaxed)));
+    map_heavy(runs, |r| {
+        place(records(r), fills[r].clone(), &keys, &values, slots.as_ptr(), |p, x| slots[p].store(x.into(), Relaxed))
+    });
     (offsets, slots.into_iter().map(|s| T::from(s.into_inner())).collect())
 }
 
 /// The items of `records` of a [`group_by_key`] to `put(position, value)`,
 /// each after the cursor `fill` of its key (generic in `put`, so that it
-/// inlines).
+/// inlines). The slots `slots[fill[k]]` of the keys [`READ_AHEAD`] records
+/// on are asked for ahead ([`crate::hint::prefetch`]): the items land at
+/// random, and the processor does not ask for the lines of stores ahead on
+/// its own. Boundary loops from scratch at 470,274 vertices (two such
+/// sorts) took 88.5-91.9 ms on one thread instead of 93.7-101.4, 59.1-67.8
+/// on two instead of 64.1-72.6 (three alternated rounds, 2026-12-06).
 #[inline(always)]
-fn place<T, const G: usize>(
+fn place<T, S, const G: usize>(
     records: std::ops::Range<usize>,
     mut fill: Vec<u32>,
     keys: &impl Fn(usize) -> [usize; G],
     values: &impl Fn(usize) -> [T; G],
+    slots: *const S,
     mut put: impl FnMut(usize, T),
 ) {
+    let end = records.end;
     for i in records {
+        if i + READ_AHEAD < end {
+            for k in keys(i + READ_AHEAD) {
+                crate::hint::prefetch(slots.wrapping_add(fill[k] as usize));
+            }
+        }
         for (k, x) in keys(i).into_iter().zip(values(i)) {
             put(fill[k] as usize, x);
             fill[k] += 1;
