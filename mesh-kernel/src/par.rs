@@ -415,7 +415,7 @@ where
     R: Sync,
     u32: From<I>,
 {
-    // One thread runs one loop.
+    // How many parts: see `part_count` (one loop on one thread).
     let threads = threads();
     let parts = part_count(threads).min(MAX_PARTS).min(faces.len() / SCATTER_CHUNK);
     let mut out = if parts >= 2 { map(n, |_| init.clone()) } else { vec![init; n] };
