@@ -105,6 +105,12 @@ impl IndexedHeap {
         self.sift_up(at, (distance, vertex), positions);
     }
 
+    /// The vertex a pop would return next, if any.
+    #[inline]
+    pub(crate) fn peek(&self) -> Option<u32> {
+        self.entries.first().map(|e| e.1)
+    }
+
     /// Whether the heap holds no vertex.
     pub(crate) fn is_empty(&self) -> bool {
         self.entries.is_empty()
