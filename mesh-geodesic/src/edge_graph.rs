@@ -163,7 +163,8 @@ mod tests {
     /// Every ring holds what the documentation of [`EdgeGraph::new`] says,
     /// with lengths to the bit, on a mesh with boundary, a flipped face, a
     /// fin on an edge of two faces, a separate triangle and an isolated
-    /// vertex, in the mesh's numbering and in a shuffled one.
+    /// vertex, in the mesh's numbering and in a shuffled one, with plain
+    /// and overflow-safe lengths.
     #[test]
     fn rings_list_the_ends_of_the_outgoing_half_edges_and_on_open_fans_the_vertices_before() {
         let sphere = shapes::icosphere(2).unwrap();
@@ -180,9 +181,10 @@ mod tests {
             positions[4] * 2.0,
         ]);
         faces.extend([[b, a, n], [n + 1, n + 2, n + 3]]);
+        // The same mesh 2^700 times larger, where squared lengths overflow.
+        let huge: Vec<_> = positions.iter().map(|&p| p * 2f64.powi(700)).collect();
+        let huge = TriMesh::new(huge, faces.clone()).unwrap();
         let mesh = TriMesh::new(positions, faces).unwrap();
-        let conn = mesh.connectivity();
-        assert!(!conn.is_manifold() && !conn.non_manifold_report().inconsistent_edges.is_empty());
         let count = mesh.vertex_count();
         let shuffled: Vec<u32> = (0..count as u32).map(|i| (i * 37 + 11) % count as u32).collect();
         let mut rank = vec![0u32; count];
@@ -190,8 +192,12 @@ mod tests {
             rank[v as usize] = i as u32;
         }
         let identity: Vec<u32> = (0..count as u32).collect();
-        for (order, rank) in [(&identity, &identity), (&shuffled, &rank)] {
-            let graph = EdgeGraph::new(&mesh, false, Some((order, rank)));
+        for (mesh, order, rank, robust) in
+            [(&mesh, &identity, &identity, false), (&mesh, &shuffled, &rank, false), (&huge, &shuffled, &rank, true)]
+        {
+            let conn = mesh.connectivity();
+            assert!(!conn.is_manifold() && !conn.non_manifold_report().inconsistent_edges.is_empty());
+            let graph = EdgeGraph::new(mesh, robust, Some((order, rank)));
             for (i, &v) in order.iter().enumerate() {
                 let out = conn.outgoing(VertexId(v));
                 let full = conn.vertex_kinds()[v as usize] != mesh_kernel::VertexKind::Interior
@@ -207,7 +213,10 @@ mod tests {
                 let mut expected: Vec<(u32, u64)> = expected
                     .into_iter()
                     .map(|w| {
-                        (rank[w as usize], (mesh.position(VertexId(w)) - mesh.position(VertexId(v))).length().to_bits())
+                        let edge = mesh.position(VertexId(w)) - mesh.position(VertexId(v));
+                        let length = if robust { mesh_kernel::geometry::norm(edge) } else { edge.length() };
+                        assert!(length.is_finite() && length > 0.0);
+                        (rank[w as usize], length.to_bits())
                     })
                     .collect();
                 let mut ring: Vec<(u32, u64)> = graph.ring(i).iter().map(|e| (e.to, { e.length }.to_bits())).collect();
