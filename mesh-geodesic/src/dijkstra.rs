@@ -4,21 +4,23 @@
 //!
 //! Edge weights are the Euclidean edge lengths, stored with the neighbours
 //! in compressed sparse rows (built from the cached connectivity in
-//! O(V + F)); the priority queue is an indexed 4-ary heap with decrease-key,
-//! each vertex's distance, predecessor and heap position in one 16-byte
-//! record, so that relaxing an edge touches one cache line. A vertex's ring
-//! is asked for when it enters the heap, its neighbours' states when it
-//! comes to the heap's top. [`DijkstraGraph`] keeps the
-//! graph, in a breadth-first vertex numbering that keeps the front's memory
-//! together, for repeated queries. Cost O((V + E) log V) per query (the
-//! logarithm of the front's size, a few hundred to a few thousand entries
-//! on a mesh), O(V + E) memory.
+//! O(V + F)); the priority queue is a ring of buckets of distances (Dial
+//! 1969), and each vertex's distance, predecessor and queue flag sit in
+//! one 16-byte record, so that relaxing an edge touches one cache line. A
+//! vertex's ring is asked for when it enters the queue, its neighbours'
+//! records (and where their rings start) when it comes next.
+//! [`DijkstraGraph`] keeps the graph, in a breadth-first vertex numbering
+//! that keeps the front's memory together, for repeated queries. Cost
+//! O(V + E) per query when the edges' lengths lie within a factor of 2048
+//! of one another (no heap at all), else O((V + E) log V) (the logarithm
+//! of a bucket's size), plus the number of buckets the distances span;
+//! O(V + E) memory.
 
 use mesh_kernel::{TriMesh, VertexId};
 
+use crate::bucket_queue::BucketQueue;
 use crate::edge_graph::EdgeGraph;
 use crate::error::{GeodesicError, Result};
-use crate::indexed_heap::{IndexedHeap, Positions, NOT_QUEUED};
 use crate::support::{breadth_first_order, validate_source_indices};
 
 /// Options of [`dijkstra`].
@@ -185,8 +187,8 @@ pub(crate) fn robust_lengths(mesh: &TriMesh) -> bool {
     !(2f64.powi(-100)..=2f64.powi(100)).contains(&mesh_kernel::units::length_unit(mesh))
 }
 
-/// A vertex's state in a search: 16 bytes, aligned so that the three
-/// things an edge relaxation reads or writes share one cache line.
+/// A vertex's state in a search: 16 bytes, aligned so that what an edge
+/// relaxation reads or writes shares one cache line.
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(16))]
 struct VertexState {
@@ -194,8 +196,8 @@ struct VertexState {
     /// The previous vertex on a shortest path (graph numbering), or
     /// `u32::MAX`.
     predecessor: u32,
-    /// The heap's bookkeeping ([`Positions`]).
-    position: u32,
+    /// In the queue of the running search ([`BucketQueue::push`]).
+    queued: bool,
 }
 
 /// The state of a (possibly incremental) multi-source search, in the
@@ -209,26 +211,18 @@ pub(crate) struct Search {
     /// distance is finite ([`Search::label`]): keeping it cost 6% of a
     /// query at 470,274 vertices.
     label: Vec<u32>,
-}
-
-impl Positions for Vec<VertexState> {
-    #[inline]
-    fn position(&self, vertex: u32) -> u32 {
-        self[vertex as usize].position
-    }
-    #[inline]
-    fn set_position(&mut self, vertex: u32, position: u32) {
-        self[vertex as usize].position = position;
-    }
+    /// The queue, kept between the calls of an incremental search on one
+    /// graph (its lists keep their memory).
+    queue: Option<BucketQueue>,
 }
 
 impl Search {
     /// Every one of `vertex_count` vertices unreached, for seeds labelled
     /// by their position in a list of `source_count` sources. O(V).
     pub(crate) fn unreached(vertex_count: usize, source_count: usize) -> Self {
-        let state = VertexState { distance: f64::INFINITY, predecessor: u32::MAX, position: NOT_QUEUED };
+        let state = VertexState { distance: f64::INFINITY, predecessor: u32::MAX, queued: false };
         let label = if source_count > 1 { vec![u32::MAX; vertex_count] } else { Vec::new() };
-        Self { state: vec![state; vertex_count], label }
+        Self { state: vec![state; vertex_count], label, queue: None }
     }
 
     /// Distance of graph vertex `i` to its nearest source so far.
@@ -282,18 +276,15 @@ impl Search {
     /// makes repeated calls an exact incremental multi-source search
     /// (farthest-point sampling). Seeds must be in range. A vertex's
     /// distance is the smallest `d(u) + |uw|` over its neighbours, each sum
-    /// rounded once, whatever the heap's order among equal keys. Vertices
+    /// rounded once, whatever the queue's order among equal keys. Vertices
     /// farther than `max_distance` are left (or put back) unreached.
-    /// `on_settle` sees every vertex popped: with an infinite
-    /// `max_distance`, the only ones whose distance this call lowers.
+    /// `on_settle` sees every vertex settled, once: with an infinite
+    /// `max_distance`, the vertices whose distance this call lowers. One
+    /// `Search` runs on one graph (its queue is kept between calls).
     ///
-    /// A vertex's ring is asked for when it enters the heap, and its
-    /// neighbours' states when it comes to the heap's top, one pop before
-    /// they are read: one-off searches at 470,274 vertices in file order
-    /// took 61-65 ms instead of 70-72, prepared queries 33.5-36.4 instead of
-    /// 38.1-39.9; on a 40,962-vertex icosphere, whose states fit in the
-    /// cache, queries took 1.45-1.47 ms against 1.35-1.49 (alternated
-    /// processes on one core, 2026-12-06).
+    /// A vertex's ring is asked for when it enters the queue, and its
+    /// neighbours' states and ring starts when it comes next, one pop before
+    /// they are read.
     pub(crate) fn propagate(
         &mut self,
         graph: &EdgeGraph,
@@ -301,49 +292,58 @@ impl Search {
         max_distance: f64,
         mut on_settle: impl FnMut(u32),
     ) {
-        let mut heap = IndexedHeap::new();
+        let (shortest, longest) = graph.length_range();
+        let mut queue = self.queue.take().unwrap_or_else(|| BucketQueue::new(shortest, longest));
         debug_assert!(!self.label.is_empty() || seeds.iter().all(|&(_, label)| label == 0));
         for &(s, label) in seeds {
             let st = &mut self.state[s.idx()];
             let unlabelled = self.label.get(s.idx()) == Some(&u32::MAX);
             if st.distance > 0.0 || unlabelled {
-                *st = VertexState { distance: 0.0, predecessor: u32::MAX, position: st.position };
+                (st.distance, st.predecessor, st.queued) = (0.0, u32::MAX, true);
                 if let Some(l) = self.label.get_mut(s.idx()) {
                     *l = label;
                 }
-                heap.push_or_decrease(0.0, s.0, &mut self.state);
+                queue.push(0.0, s.0);
             }
         }
-        while let Some((d, v)) = heap.pop(&mut self.state) {
+        while let Some((d, v)) = queue.pop(|v| self.state[v as usize].distance) {
+            self.state[v as usize].queued = false;
             if d > max_distance {
-                heap.clear(&mut self.state);
-                break;
+                if queue.beyond(max_distance) {
+                    for v in queue.drain() {
+                        self.state[v as usize].queued = false;
+                    }
+                    break;
+                }
+                continue;
             }
             let p = self.state[v as usize].predecessor;
             if p != u32::MAX && !self.label.is_empty() {
                 self.label[v as usize] = self.label[p as usize];
             }
             on_settle(v);
-            if let Some(next) = heap.peek() {
+            if let Some(next) = queue.peek() {
                 for e in graph.ring(next as usize) {
                     mesh_kernel::hint::prefetch(self.state.as_ptr().wrapping_add(e.to as usize));
+                    graph.prefetch_offset(e.to as usize);
                 }
             }
             for e in graph.ring(v as usize) {
                 let (w, nd) = (e.to, d + e.length);
                 let st = &mut self.state[w as usize];
-                // A popped vertex is never improved: its distance is at most
-                // `d`, and `d + length >= d`.
+                // A settled vertex is never improved: the queue settles a
+                // vertex only once no other can lower it.
                 if nd < st.distance {
-                    if st.position == NOT_QUEUED {
+                    if !st.queued {
                         graph.prefetch_ring(w as usize);
                     }
-                    st.distance = nd;
-                    st.predecessor = v;
-                    heap.push_or_decrease(nd, w, &mut self.state);
+                    (st.distance, st.predecessor, st.queued) = (nd, v, true);
+                    queue.push(nd, w);
                 }
             }
         }
+        queue.restart();
+        self.queue = Some(queue);
         if max_distance.is_finite() {
             for (i, s) in self.state.iter_mut().enumerate() {
                 if s.distance > max_distance {
@@ -360,45 +360,81 @@ impl Search {
 
 #[cfg(test)]
 mod tests {
-    use super::{EdgeGraph, Search, NOT_QUEUED};
-    use mesh_kernel::{shapes, VertexId};
+    use super::{EdgeGraph, Search};
+    use mesh_kernel::{shapes, TriMesh, VertexId};
     use std::cmp::Reverse;
     use std::collections::BinaryHeap;
 
-    /// A search cut off at a distance leaves a clean heap, and a second
-    /// search on top of it lowers exactly what a plain Dijkstra started
-    /// from the first one's field lowers (a vertex is passed on only where
-    /// the new distance is strictly smaller).
-    #[test]
-    fn a_search_after_a_cut_off_one_sees_a_clean_heap() {
-        let mesh = shapes::icosphere(3).unwrap();
-        let (n, graph) = (mesh.vertex_count(), EdgeGraph::new(&mesh, false, None));
-        let mut search = Search::unreached(n, 2);
-        search.propagate(&graph, &[(VertexId(0), 0)], 0.3, |_| {});
-        assert!(search.state.iter().all(|s| s.position == NOT_QUEUED));
-        let first: Vec<f64> = (0..n).map(|v| search.distance(v)).collect();
-        assert!(first.iter().any(|d| d.is_infinite()) && first.iter().filter(|d| d.is_finite()).count() > 10);
-        search.propagate(&graph, &[(VertexId(5), 1)], f64::INFINITY, |_| {});
-        // The reference: a binary-heap Dijkstra from vertex 5 over `first`.
-        let (mut expected, mut label) = (first.clone(), vec![0u32; n]);
-        let mut heap = BinaryHeap::from([Reverse((0f64.to_bits(), 5u32))]);
-        (expected[5], label[5]) = (0.0, 1);
+    /// A plain Dijkstra on `graph` over the distances `start`, from
+    /// `source` labelled `label`: the distances and labels it lowers.
+    fn reference(graph: &EdgeGraph, start: &[f64], labels: &[u32], source: u32, label: u32) -> (Vec<f64>, Vec<u32>) {
+        let (mut distance, mut labels) = (start.to_vec(), labels.to_vec());
+        let mut heap = BinaryHeap::from([Reverse((0f64.to_bits(), source))]);
+        (distance[source as usize], labels[source as usize]) = (0.0, label);
         while let Some(Reverse((bits, v))) = heap.pop() {
             let d = f64::from_bits(bits);
-            if d > expected[v as usize] {
+            if d > distance[v as usize] {
                 continue;
             }
             for e in graph.ring(v as usize) {
                 let nd = d + e.length;
-                if nd < expected[e.to as usize] {
-                    (expected[e.to as usize], label[e.to as usize]) = (nd, 1);
+                if nd < distance[e.to as usize] {
+                    (distance[e.to as usize], labels[e.to as usize]) = (nd, label);
                     heap.push(Reverse((nd.to_bits(), e.to)));
                 }
             }
         }
-        for v in 0..n {
-            let reached = if expected[v].is_finite() { label[v] } else { u32::MAX };
-            assert_eq!((search.distance(v), search.label(v)), (expected[v], reached), "vertex {v}");
+        (distance, labels)
+    }
+
+    /// A search cut off at a distance gives the plain search's distances up
+    /// to it and leaves nothing queued, and a second search on top of it
+    /// lowers exactly what a plain Dijkstra started from the first one's
+    /// field lowers (a vertex is passed on only where the new distance is
+    /// strictly smaller). On edges of similar lengths (a queue of buckets
+    /// taken in any order), with one edge 10^5 times shorter than the
+    /// others, with an edge of length zero (buckets kept as heaps), and on
+    /// a sphere of radius 2^-1050 (one bucket).
+    #[test]
+    fn searches_cut_off_and_resumed_match_a_plain_dijkstra() {
+        let sphere = shapes::icosphere(3).unwrap();
+        let [a, b, _] = sphere.faces()[0];
+        let (pa, pb) = (sphere.position(VertexId(a)), sphere.position(VertexId(b)));
+        let moved = |to| {
+            let mut positions = sphere.positions().to_vec();
+            positions[b as usize] = to;
+            TriMesh::new(positions, sphere.faces().to_vec()).unwrap()
+        };
+        // So small that one over half its shortest edge overflows: one heap.
+        let tiny: Vec<_> = sphere.positions().iter().map(|&p| p * 2f64.powi(-1050)).collect();
+        let tiny = TriMesh::new(tiny, sphere.faces().to_vec()).unwrap();
+        for (mesh, scale, ordered) in [
+            (sphere.clone(), 1.0, false),
+            (moved(pa + (pb - pa) * 1e-5), 1.0, true),
+            (moved(pa), 1.0, true),
+            (tiny, 2f64.powi(-1050), true),
+        ] {
+            let (n, graph) = (mesh.vertex_count(), EdgeGraph::new(&mesh, scale != 1.0, None));
+            let mut search = Search::unreached(n, 2);
+            search.propagate(&graph, &[(VertexId(0), 0)], 0.3 * scale, |_| {});
+            assert_eq!(search.queue.as_ref().map(|q| q.is_ordered()), Some(ordered));
+            assert!(search.state.iter().all(|s| !s.queued));
+            let first: Vec<f64> = (0..n).map(|v| search.distance(v)).collect();
+            let (plain, _) = reference(&graph, &vec![f64::INFINITY; n], &vec![u32::MAX; n], 0, 0);
+            let cut: Vec<f64> = plain.iter().map(|&d| if d > 0.3 * scale { f64::INFINITY } else { d }).collect();
+            assert_eq!(first, cut);
+            assert!(first.iter().any(|d| d.is_infinite()) && first.iter().filter(|d| d.is_finite()).count() > 10);
+            let labels: Vec<u32> = (0..n).map(|v| search.label(v)).collect();
+            let mut settled = Vec::new();
+            search.propagate(&graph, &[(VertexId(5), 1)], f64::INFINITY, |v| settled.push(v));
+            let (expected, label) = reference(&graph, &first, &labels, 5, 1);
+            for v in 0..n {
+                assert_eq!((search.distance(v), search.label(v)), (expected[v], label[v]), "vertex {v}");
+            }
+            // Each vertex the second search lowered is settled once.
+            settled.sort_unstable();
+            let lowered: Vec<u32> = (0..n as u32).filter(|&v| expected[v as usize] != first[v as usize]).collect();
+            assert_eq!(settled, lowered);
         }
     }
 }

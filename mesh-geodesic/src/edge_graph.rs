@@ -42,6 +42,10 @@ pub(crate) struct EdgeGraph {
     /// `offsets[i]..offsets[i + 1]` is the range of internal vertex `i`'s ring.
     offsets: Vec<u32>,
     edges: Vec<Edge>,
+    /// The shortest edge length (`+infinity` without edges).
+    shortest: f64,
+    /// The longest edge length (0 without edges).
+    longest: f64,
 }
 
 impl EdgeGraph {
@@ -72,6 +76,7 @@ impl EdgeGraph {
         let p = mesh.positions();
         let length = |a: DVec3, b: DVec3| if robust { mesh_kernel::geometry::norm(b - a) } else { (b - a).length() };
         let faces = mesh.faces();
+        let (mut shortest, mut longest) = (f64::INFINITY, 0f64);
         for (f, face) in faces.iter().enumerate() {
             if let Some(ahead) = faces.get(f + 2 * AHEAD) {
                 for &v in ahead {
@@ -88,6 +93,10 @@ impl EdgeGraph {
             let ids = face.map(internal);
             let [pa, pb, pc] = face.map(|v| p[v as usize]);
             let sides = [length(pa, pb), length(pb, pc), length(pc, pa)];
+            for s in sides {
+                longest = longest.max(s);
+                shortest = shortest.min(s);
+            }
             // Corner k: to the next corner along side k, from the one
             // before along side k + 2.
             for k in 0..3 {
@@ -99,7 +108,7 @@ impl EdgeGraph {
                 c[0] += 1;
             }
         }
-        Self { offsets, edges }
+        Self { offsets, edges, shortest, longest }
     }
 
     /// The rings' offsets, in the internal numbering (`order[i]` the mesh
@@ -123,10 +132,23 @@ impl EdgeGraph {
         (offsets, cursors)
     }
 
+    /// The shortest and the longest edge length (`+infinity` and 0 without
+    /// edges). O(1).
+    pub(crate) fn length_range(&self) -> (f64, f64) {
+        (self.shortest, self.longest)
+    }
+
     /// The edges from internal vertex `i` to its neighbours. O(1).
     #[inline]
     pub(crate) fn ring(&self, i: usize) -> &[Edge] {
         &self.edges[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// Asks the processor to bring where `i`'s ring starts into cache. A
+    /// hint only.
+    #[inline]
+    pub(crate) fn prefetch_offset(&self, i: usize) {
+        mesh_kernel::hint::prefetch(self.offsets.as_ptr().wrapping_add(i));
     }
 
     /// Asks the processor to bring `i`'s ring into cache (the lines of its

@@ -1,5 +1,5 @@
 //! An indexed 4-ary min-heap of `(distance, vertex)` entries with
-//! decrease-key, for label-setting searches (Dijkstra, Fast Marching):
+//! decrease-key, for Fast Marching's label-setting search:
 //! every vertex is in the heap at most once, so no stale entries are
 //! popped, and the heap stays as small as the front.
 //!
@@ -24,8 +24,10 @@
 //! comparison per level. Prepared Dijkstra queries: 4% faster on a
 //! 40,962-vertex icosphere, 1-2% at 470,274 vertices (one core).
 //!
-//! Measured against the radix heap on the distances' bits (Ahuja, Mehlhorn,
-//! Orlin and Tarjan 1990) it replaces, single-source Dijkstra on one core:
+//! Dijkstra's search used it until 2026-12-06, when a ring of buckets
+//! ([`crate::bucket_queue`]) made its queries 10-25% faster. Measured
+//! against the radix heap on the distances' bits (Ahuja, Mehlhorn, Orlin
+//! and Tarjan 1990) it had replaced, single-source Dijkstra on one core:
 //! 0.7x the time at 470,274 vertices in breadth-first order (the radix heap
 //! moved each entry 6 times between its buckets there) and 0.75x on a
 //! 40,962-vertex icosphere.
@@ -103,12 +105,6 @@ impl IndexedHeap {
             }
         };
         self.sift_up(at, (distance, vertex), positions);
-    }
-
-    /// The vertex a pop would return next, if any.
-    #[inline]
-    pub(crate) fn peek(&self) -> Option<u32> {
-        self.entries.first().map(|e| e.1)
     }
 
     /// Whether the heap holds no vertex.

@@ -51,6 +51,7 @@
 // `!(x > 0.0)` is the NaN-rejecting test used throughout on purpose.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod bucket_queue;
 pub mod dijkstra;
 mod edge_graph;
 pub mod error;
