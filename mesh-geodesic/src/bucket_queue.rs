@@ -68,7 +68,7 @@ impl BucketQueue {
         let scale = if width > 0.0 && (1.0 / width).is_finite() { 1.0 / width } else { 0.0 };
         // A push lands at most `ceil(longest * scale) + 1` buckets after
         // the current one (the sum and the product each round once).
-        let slots = ((longest * scale).ceil() as usize + 3).next_power_of_two().max(64);
+        let slots = ((longest * scale).ceil() as usize + 3).next_power_of_two();
         Self {
             scale,
             ordered: scale == 0.0 || !(width <= shortest / 2.0),
@@ -76,7 +76,7 @@ impl BucketQueue {
             unordered: Vec::new(),
             taken: 0,
             lists: vec![Vec::new(); slots],
-            occupied: vec![0; slots / 64],
+            occupied: vec![0; slots.div_ceil(64)],
             mask: slots as u64 - 1,
             current: 0,
             listed: 0,
