@@ -24,14 +24,12 @@
 //! made those queries 40-43 ms instead (47-49 with lists of bare vertices,
 //! whose distances were read when their bucket came up).
 
-use std::cmp::Reverse;
 use std::collections::BinaryHeap;
+
+use crate::support::HeapEntry as Entry;
 
 /// The ring spans the longest edge in at most this many buckets.
 pub(crate) const MAX_SPAN: f64 = 1024.0;
-
-/// `(distance bits, vertex)`, smallest first in a heap.
-type Entry = Reverse<(u64, u32)>;
 
 /// The queue; see the module documentation.
 #[derive(Debug, Clone)]
@@ -56,8 +54,6 @@ pub(crate) struct BucketQueue {
     mask: u64,
     /// The current bucket.
     current: u64,
-    /// Entries in the lists, stale ones included.
-    listed: usize,
 }
 
 impl BucketQueue {
@@ -79,7 +75,6 @@ impl BucketQueue {
             occupied: vec![0; slots.div_ceil(64)],
             mask: slots as u64 - 1,
             current: 0,
-            listed: 0,
         }
     }
 
@@ -102,7 +97,7 @@ impl BucketQueue {
     pub(crate) fn push(&mut self, distance: f64, vertex: u32) {
         let b = self.bucket(distance);
         debug_assert!(b >= self.current && b - self.current <= self.mask, "a push outside the ring");
-        let entry = Reverse(((distance + 0.0).to_bits(), vertex));
+        let entry = Entry { distance, vertex };
         if b == self.current {
             if self.ordered {
                 self.now.push(entry);
@@ -113,7 +108,6 @@ impl BucketQueue {
             let slot = (b & self.mask) as usize;
             self.lists[slot].push(entry);
             self.occupied[slot / 64] |= 1 << (slot % 64);
-            self.listed += 1;
         }
     }
 
@@ -139,8 +133,8 @@ impl BucketQueue {
     #[inline]
     pub(crate) fn peek(&self) -> Option<u32> {
         match self.top() {
-            Some(e) => Some(e.0 .1),
-            None => self.next_occupied().and_then(|slot| self.lists[slot].first()).map(|e| e.0 .1),
+            Some(e) => Some(e.vertex),
+            None => self.next_occupied().and_then(|slot| self.lists[slot].first()).map(|e| e.vertex),
         }
     }
 
@@ -155,24 +149,23 @@ impl BucketQueue {
             if self.top().is_some() {
                 break;
             }
-            if self.listed == 0 {
+            if !self.advance() {
                 return None;
             }
-            self.advance();
         }
-        let Reverse((bits, v)) = if self.ordered { self.now.pop() } else { self.take() }?;
+        let Entry { distance: d, vertex: v } = if self.ordered { self.now.pop() } else { self.take() }?;
         // The next bucket becomes current only at the next pop, after the
         // edges of `v` have been relaxed into buckets from this one on.
         self.drop_stale(&distance);
-        Some((f64::from_bits(bits), v))
+        Some((d, v))
     }
 
     /// Drops the stale entries at the top of the current bucket, so that
     /// [`BucketQueue::peek`] sees the next vertex to settle.
     #[inline]
     fn drop_stale(&mut self, distance: &impl Fn(u32) -> f64) {
-        while let Some(Reverse((bits, v))) = self.top() {
-            if f64::from_bits(bits) == distance(v) {
+        while let Some(Entry { distance: d, vertex: v }) = self.top() {
+            if d == distance(v) {
                 return;
             }
             if self.ordered {
@@ -192,14 +185,14 @@ impl BucketQueue {
     }
 
     /// Makes the next occupied bucket current (its list a heap when
-    /// ordered). O(1) plus O(ring / 64) bit words, and O(list) to heapify.
-    fn advance(&mut self) {
-        let Some(slot) = self.next_occupied() else { return };
+    /// ordered); `false` when every bucket is empty. O(ring / 64) bit
+    /// words, and O(list) to heapify.
+    fn advance(&mut self) -> bool {
+        let Some(slot) = self.next_occupied() else { return false };
         let start = ((self.current + 1) & self.mask) as usize;
         self.current += 1 + ((slot as u64).wrapping_sub(start as u64) & self.mask);
         self.occupied[slot / 64] &= !(1 << (slot % 64));
         let list = std::mem::take(&mut self.lists[slot]);
-        self.listed -= list.len();
         self.lists[slot] = if self.ordered {
             std::mem::replace(&mut self.now, BinaryHeap::from(list)).into_vec()
         } else {
@@ -208,6 +201,7 @@ impl BucketQueue {
             spent.clear();
             spent
         };
+        true
     }
 
     /// The slot of the first occupied bucket after the current one.
@@ -224,7 +218,9 @@ impl BucketQueue {
 
     /// Makes an empty queue ready for another search on the same graph.
     pub(crate) fn restart(&mut self) {
-        debug_assert!(self.listed == 0 && self.now.is_empty() && self.taken >= self.unordered.len());
+        debug_assert!(
+            self.occupied.iter().all(|&w| w == 0) && self.now.is_empty() && self.taken >= self.unordered.len()
+        );
         (self.current, self.taken) = (0, 0);
         self.unordered.clear();
     }
@@ -232,9 +228,8 @@ impl BucketQueue {
     /// Every vertex still queued, stale entries included (for a search cut
     /// off before the queue ran dry, to unmark them).
     pub(crate) fn drain(&mut self) -> impl Iterator<Item = u32> + '_ {
-        self.listed = 0;
         self.occupied.fill(0);
         let lists = self.lists.iter_mut().flat_map(|l| l.drain(..));
-        self.now.drain().chain(self.unordered.drain(..).skip(self.taken)).chain(lists).map(|e| e.0 .1)
+        self.now.drain().chain(self.unordered.drain(..).skip(self.taken)).chain(lists).map(|e| e.vertex)
     }
 }
