@@ -29,7 +29,7 @@ use std::collections::BinaryHeap;
 use crate::support::HeapEntry as Entry;
 
 /// The ring spans the longest edge in at most this many buckets.
-pub(crate) const MAX_SPAN: f64 = 1024.0;
+const MAX_SPAN: f64 = 1024.0;
 
 /// The queue; see the module documentation.
 #[derive(Debug, Clone)]

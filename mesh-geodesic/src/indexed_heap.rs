@@ -3,9 +3,11 @@
 //! every vertex is in the heap at most once, so no stale entries are
 //! popped, and the heap stays as small as the front.
 //!
-//! Each vertex's position in the heap is kept by the caller beside the
-//! vertex's other search state ([`Positions`]), so that relaxing an edge
-//! touches one cache line of per-vertex data, not two. A node's four
+//! Each vertex's position in the heap is kept by the caller, in a slice
+//! indexed by vertex: `NOT_QUEUED` while the vertex is not in the heap
+//! (before it enters and after it leaves), else its index in the heap's
+//! entries; once a heap is [`IndexedHeap::clear`]ed, every position is
+//! `NOT_QUEUED` again, ready for the next search. A node's four
 //! children are consecutive; a pop compares them as two pairs and then the
 //! two smaller keys, so that each level waits for two comparisons, not
 //! three in a row: prepared Dijkstra queries at 470,274 vertices took
@@ -31,30 +33,6 @@
 //! 0.7x the time at 470,274 vertices in breadth-first order (the radix heap
 //! moved each entry 6 times between its buckets there) and 0.75x on a
 //! 40,962-vertex icosphere.
-
-/// Where the heap keeps each vertex's position: `NOT_QUEUED` while the
-/// vertex is not in the heap (before it enters and after it leaves), else
-/// its index in the heap's entries. A search marks finished vertices
-/// itself; once a heap is [`IndexedHeap::clear`]ed, every position is
-/// `NOT_QUEUED` again, ready for the next search.
-pub(crate) trait Positions {
-    /// The position of `vertex`.
-    fn position(&self, vertex: u32) -> u32;
-    /// Stores the position of `vertex`.
-    fn set_position(&mut self, vertex: u32, position: u32);
-}
-
-/// Positions in an array of their own.
-impl Positions for Vec<u32> {
-    #[inline]
-    fn position(&self, vertex: u32) -> u32 {
-        self[vertex as usize]
-    }
-    #[inline]
-    fn set_position(&mut self, vertex: u32, position: u32) {
-        self[vertex as usize] = position;
-    }
-}
 
 /// Position of a vertex that is not in the heap.
 pub(crate) const NOT_QUEUED: u32 = u32::MAX;
@@ -91,10 +69,10 @@ impl IndexedHeap {
     /// slower on a 41k-vertex icosphere).
     /// O(log of the heap's size).
     #[inline]
-    pub(crate) fn push_or_decrease(&mut self, distance: f64, vertex: u32, positions: &mut impl Positions) {
+    pub(crate) fn push_or_decrease(&mut self, distance: f64, vertex: u32, positions: &mut [u32]) {
         debug_assert!(distance >= 0.0, "a negative or NaN distance");
         let distance = key(distance);
-        let at = match positions.position(vertex) {
+        let at = match positions[vertex as usize] {
             NOT_QUEUED => {
                 self.entries.push((distance, vertex));
                 self.entries.len() - 1
@@ -114,9 +92,9 @@ impl IndexedHeap {
 
     /// Removes an entry of smallest distance. O(log of the heap's size).
     #[inline]
-    pub(crate) fn pop(&mut self, positions: &mut impl Positions) -> Option<(f64, u32)> {
+    pub(crate) fn pop(&mut self, positions: &mut [u32]) -> Option<(f64, u32)> {
         let top = *self.entries.first()?;
-        positions.set_position(top.1, NOT_QUEUED);
+        positions[top.1 as usize] = NOT_QUEUED;
         let last = self.entries.pop()?;
         if !self.entries.is_empty() {
             self.sift_down(0, last, positions);
@@ -126,16 +104,16 @@ impl IndexedHeap {
 
     /// Empties the heap, its vertices' positions back to `NOT_QUEUED`.
     /// O(size).
-    pub(crate) fn clear(&mut self, positions: &mut impl Positions) {
+    pub(crate) fn clear(&mut self, positions: &mut [u32]) {
         for &(_, v) in &self.entries {
-            positions.set_position(v, NOT_QUEUED);
+            positions[v as usize] = NOT_QUEUED;
         }
         self.entries.clear();
     }
 
     /// Moves the hole at `at` towards the root until `entry` fits there.
     #[inline]
-    fn sift_up(&mut self, mut at: usize, entry: (u64, u32), positions: &mut impl Positions) {
+    fn sift_up(&mut self, mut at: usize, entry: (u64, u32), positions: &mut [u32]) {
         while at > 0 {
             let parent = (at - 1) / ARITY;
             let above = self.entries[parent];
@@ -143,11 +121,11 @@ impl IndexedHeap {
                 break;
             }
             self.entries[at] = above;
-            positions.set_position(above.1, at as u32);
+            positions[above.1 as usize] = at as u32;
             at = parent;
         }
         self.entries[at] = entry;
-        positions.set_position(entry.1, at as u32);
+        positions[entry.1 as usize] = at as u32;
     }
 
     /// Moves the hole at `at` down to a leaf along the smallest children,
@@ -156,7 +134,7 @@ impl IndexedHeap {
     /// `entry` taken from the heap's end, which mostly belongs near the
     /// bottom.
     #[inline]
-    fn sift_down(&mut self, mut at: usize, entry: (u64, u32), positions: &mut impl Positions) {
+    fn sift_down(&mut self, mut at: usize, entry: (u64, u32), positions: &mut [u32]) {
         let n = self.entries.len();
         loop {
             let first = ARITY * at + 1;
@@ -183,7 +161,7 @@ impl IndexedHeap {
             };
             let below = self.entries[child];
             self.entries[at] = below;
-            positions.set_position(below.1, at as u32);
+            positions[below.1 as usize] = at as u32;
             at = child;
         }
         self.sift_up(at, entry, positions);
