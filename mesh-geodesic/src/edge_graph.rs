@@ -9,13 +9,15 @@
 //! Measured against building no graph (2026-12-06, one core, 470,274
 //! vertices in file order): a search that walked each settled vertex's
 //! half-edges, their ends and the ends' positions took 95-97 ms, against
-//! 21-23 ms for this graph and 35-37 ms for the search on it. Keeping in
+//! 21-23 ms for this graph (zeroed before it was written, as it then was)
+//! and 35-37 ms for the search on it. Keeping in
 //! each edge where its neighbour's ring starts (16 bytes an edge, so that
 //! a search asks for that ring without reading the offsets first) left
 //! prepared queries level and made a one-off `dijkstra` 10% slower, the
 //! larger graph costing more to build than the offsets' reads it saves.
 
 use mesh_kernel::glam::DVec3;
+use mesh_kernel::rows::RowFill;
 use mesh_kernel::{Connectivity, TriMesh, VertexId, VertexKind};
 
 /// How many faces ahead of the one being written [`EdgeGraph::new`] asks
@@ -61,18 +63,23 @@ impl EdgeGraph {
     /// (from [`crate::dijkstra::robust_lengths`]). O(V + F).
     ///
     /// One pass over the faces in their order: each face's three sides are
-    /// measured once and written into the rings of their ends, in the
+    /// measured once and written into the rings of their starts, in the
     /// faces' order within a ring (not counter-clockwise, which no search
     /// needs). The slots written [`AHEAD`] faces on are asked for ahead, as
     /// are the positions and ring cursors `2 AHEAD` faces on. At 470,274
     /// vertices in file order this took 17.5-18.4 ms on one core where a
     /// pass over the vertices that looked up their half-edges' ends and
     /// then the ends' positions took 29; a fused version of that vertex
-    /// pass, asking for the faces and positions ahead, 24-29 ms.
+    /// pass, asking for the faces and positions ahead, 24-29 ms. The rings
+    /// are written into memory that was not zeroed first
+    /// ([`RowFill`]); the vertices before, on the full rings only, in a
+    /// second pass over those rings' half-edges (a test of each corner in
+    /// the face pass cost about 2 ms at 470,274 vertices).
     pub(crate) fn new(mesh: &TriMesh, robust: bool, numbering: Option<(&[u32], &[u32])>) -> Self {
         let internal = |v: u32| numbering.map_or(v, |(_, rank)| rank[v as usize]);
-        let (offsets, mut cursors) = Self::layout(mesh.connectivity(), numbering.map(|(order, _)| order));
-        let mut edges = vec![Edge { to: 0, length: 0.0 }; offsets[offsets.len() - 1] as usize];
+        let conn = mesh.connectivity();
+        let full = full_rings(conn);
+        let mut rings = RowFill::with_lengths(Self::ring_lengths(conn, &full, numbering.map(|(order, _)| order)));
         let p = mesh.positions();
         let length = |a: DVec3, b: DVec3| if robust { mesh_kernel::geometry::norm(b - a) } else { (b - a).length() };
         let faces = mesh.faces();
@@ -80,56 +87,63 @@ impl EdgeGraph {
         for (f, face) in faces.iter().enumerate() {
             if let Some(ahead) = faces.get(f + 2 * AHEAD) {
                 for &v in ahead {
-                    mesh_kernel::hint::prefetch(cursors.as_ptr().wrapping_add(internal(v) as usize));
+                    rings.prefetch_cursor(internal(v) as usize);
                     mesh_kernel::hint::prefetch(p.as_ptr().wrapping_add(v as usize));
                 }
             }
             if let Some(ahead) = faces.get(f + AHEAD) {
                 for &v in ahead {
-                    let [slot, _] = cursors[internal(v) as usize];
-                    mesh_kernel::hint::prefetch(edges.as_ptr().wrapping_add(slot as usize));
+                    rings.prefetch_slot(internal(v) as usize);
                 }
             }
             let ids = face.map(internal);
             let [pa, pb, pc] = face.map(|v| p[v as usize]);
             let sides = [length(pa, pb), length(pb, pc), length(pc, pa)];
             for s in sides {
-                longest = longest.max(s);
-                shortest = shortest.min(s);
-            }
-            // Corner k: to the next corner along side k, from the one
-            // before along side k + 2.
-            for k in 0..3 {
-                let c = &mut cursors[ids[k] as usize];
-                edges[c[0] as usize] = Edge { to: ids[(k + 1) % 3], length: sides[k] };
-                if c[1] != 0 {
-                    edges[(c[0] + c[1]) as usize] = Edge { to: ids[(k + 2) % 3], length: sides[(k + 2) % 3] };
+                if s > longest {
+                    longest = s;
                 }
-                c[0] += 1;
+                if s < shortest {
+                    shortest = s;
+                }
+            }
+            // Corner k: to the next corner along side k.
+            for k in 0..3 {
+                rings.push(ids[k] as usize, Edge { to: ids[(k + 1) % 3], length: sides[k] });
             }
         }
+        // Then on the full rings, from each outgoing half-edge's corner to
+        // the corner before it.
+        for v in (0..full.len()).filter(|&v| full[v]) {
+            for &h in conn.outgoing(VertexId::new(v)) {
+                let face = faces[h.idx() / 3];
+                let before = face[(h.idx() + 2) % 3];
+                let edge = Edge { to: internal(before), length: length(p[before as usize], p[v]) };
+                rings.push(internal(v as u32) as usize, edge);
+            }
+        }
+        let (offsets, edges) = rings.finish();
         Self { offsets, edges, shortest, longest }
     }
 
-    /// The rings' offsets, in the internal numbering (`order[i]` the mesh
-    /// vertex of internal vertex `i`, the identity without it), and each
-    /// ring's cursor: where its first destination goes, and how far after
-    /// each destination the vertex before it goes (0 where those are not
-    /// listed). O(V).
-    fn layout(conn: &Connectivity, order: Option<&[u32]>) -> (Vec<u32>, Vec<[u32; 2]>) {
-        let full = full_rings(conn);
-        let mut offsets = Vec::with_capacity(full.len() + 1);
-        let mut cursors = Vec::with_capacity(full.len());
-        let mut total = 0u32;
-        offsets.push(0);
-        for i in 0..full.len() {
+    /// The rings' lengths in the internal numbering (`order[i]` the mesh
+    /// vertex of internal vertex `i`, the identity without it): a ring
+    /// holds a vertex's outgoing half-edges, twice over on the `full`
+    /// ones. O(V).
+    fn ring_lengths<'a>(
+        conn: &'a Connectivity,
+        full: &'a [bool],
+        order: Option<&'a [u32]>,
+    ) -> impl ExactSizeIterator<Item = u32> + 'a {
+        (0..full.len()).map(move |i| {
             let v = order.map_or(i, |order| order[i] as usize);
             let out = conn.outgoing(VertexId::new(v)).len() as u32;
-            cursors.push([total, if full[v] { out } else { 0 }]);
-            total += if full[v] { 2 * out } else { out };
-            offsets.push(total);
-        }
-        (offsets, cursors)
+            if full[v] {
+                2 * out
+            } else {
+                out
+            }
+        })
     }
 
     /// The shortest and the longest edge length (`+infinity` and 0 without
