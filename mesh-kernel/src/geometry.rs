@@ -459,32 +459,34 @@ pub fn mean_edge_length(mesh: &TriMesh) -> f64 {
 /// Signed dihedral angle of every edge: the angle between the normals of its
 /// two faces, in [-pi, pi], positive where the surface is convex (the edge
 /// folds away from the normals), zero for flat, boundary and non-manifold
-/// edges and across zero-area faces.
+/// edges and across zero-area faces. From the cached face normals
+/// ([`TriMesh::geometry`]), on [`par`]'s threads: in `mesh report` at
+/// 470,274 vertices, 116 ms with the face normals' computation, where
+/// computing both faces' normals for every edge on one thread took 310
+/// (two cores, 2026-12-06).
 pub fn dihedral_angles(mesh: &TriMesh) -> Vec<f64> {
     let conn = mesh.connectivity();
     let p = mesh.positions();
-    (0..conn.edge_count())
-        .map(|e| {
-            let hs = conn.edge_halfedges(EdgeId::new(e));
-            let [h0, h1] = match hs {
-                [h0, h1] => [*h0, *h1],
-                _ => return 0.0,
-            };
-            let n0 = triangle_normal(mesh.triangle(h0.face()));
-            let n1 = triangle_normal(mesh.triangle(h1.face()));
-            if n0 == DVec3::ZERO || n1 == DVec3::ZERO {
-                return 0.0;
-            }
-            let angle = angle_between(n0, n1);
-            // Convex when the far corner of the second face lies below the first.
-            let far = p[conn.opposite_vertex(h1).idx()] - p[conn.origin(h0).idx()];
-            if far.dot(n0) > 0.0 {
-                -angle
-            } else {
-                angle
-            }
-        })
-        .collect()
+    let normals = mesh.geometry().face_normals();
+    par::map(conn.edge_count(), |e| {
+        let hs = conn.edge_halfedges(EdgeId::new(e));
+        let [h0, h1] = match hs {
+            [h0, h1] => [*h0, *h1],
+            _ => return 0.0,
+        };
+        let (n0, n1) = (normals[h0.face().idx()], normals[h1.face().idx()]);
+        if n0 == DVec3::ZERO || n1 == DVec3::ZERO {
+            return 0.0;
+        }
+        let angle = angle_between(n0, n1);
+        // Convex when the far corner of the second face lies below the first.
+        let far = p[conn.opposite_vertex(h1).idx()] - p[conn.origin(h0).idx()];
+        if far.dot(n0) > 0.0 {
+            -angle
+        } else {
+            angle
+        }
+    })
 }
 
 /// Feature edges (chapter section 2.2.2): non-boundary edges whose face normals differ
