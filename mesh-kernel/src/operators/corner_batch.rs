@@ -1,6 +1,7 @@
 //! Corner angles and corner areas of [`CORNER_BATCH`] faces at a time, bit
 //! for bit those of [`corner_angles_and_masses`], for single passes over
-//! the faces such as the angle defect's ([`crate::par::scatter_batched`]).
+//! the faces such as the angle defect's and the lumped mass's
+//! ([`crate::par::scatter_batched`]).
 //!
 //! One face at a time, the work is a chain of dependent latencies (edge
 //! vectors, cross product, square root, two divisions and a polynomial for
@@ -20,7 +21,7 @@ use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use glam::DVec3;
 
-use super::mass::{corner_angles_and_masses, MassKind};
+use super::mass::{corner_angles_and_masses, corner_masses, MassKind};
 use crate::geometry::{rotated_atan, PI_2_LO, PI_4_LO, TAN_PI_8};
 use crate::TriMesh;
 
@@ -40,6 +41,19 @@ pub type CornerBatch = [[(f64, f64); 3]; CORNER_BATCH];
 /// faces without branches, 4-wide where the processor has AVX2. Returns
 /// how many faces were done (0 from `first >= face_count`). O(1).
 pub fn corner_angles_and_masses_batch(mesh: &TriMesh, first: usize, kind: MassKind, out: &mut CornerBatch) -> usize {
+    batch::<true>(mesh, first, kind, out)
+}
+
+/// [`corner_angles_and_masses_batch`] without the angles (left zero): the
+/// corner areas alone, bit for bit those of [`corner_masses`], for the
+/// lumped mass. O(1).
+pub(crate) fn corner_masses_batch(mesh: &TriMesh, first: usize, kind: MassKind, out: &mut CornerBatch) -> usize {
+    batch::<false>(mesh, first, kind, out)
+}
+
+/// The batch functions' dispatch: AVX2 where the processor has it.
+#[inline(always)]
+fn batch<const ANGLES: bool>(mesh: &TriMesh, first: usize, kind: MassKind, out: &mut CornerBatch) -> usize {
     let faces = mesh.faces();
     if first >= faces.len() {
         return 0;
@@ -49,18 +63,23 @@ pub fn corner_angles_and_masses_batch(mesh: &TriMesh, first: usize, kind: MassKi
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the processor has AVX2, checked just above.
-        unsafe { batch_avx2(positions, faces, kind, out) };
+        unsafe { batch_avx2::<ANGLES>(positions, faces, kind, out) };
         return faces.len();
     }
-    batch_lanes(positions, faces, kind, out);
+    batch_lanes::<ANGLES>(positions, faces, kind, out);
     faces.len()
 }
 
 /// [`batch_lanes`] compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn batch_avx2(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
-    batch_lanes(positions, faces, kind, out);
+unsafe fn batch_avx2<const ANGLES: bool>(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    kind: MassKind,
+    out: &mut CornerBatch,
+) {
+    batch_lanes::<ANGLES>(positions, faces, kind, out);
 }
 
 /// `if c { a } else { b }`, which the compiler keeps as a select (a vector
@@ -99,9 +118,10 @@ fn atan2_lane(y: f64, x: f64) -> f64 {
 }
 
 /// [`corner_angles_and_masses_batch`] on `faces` (1 to [`CORNER_BATCH`],
-/// corners into `positions`), without the dispatch.
+/// corners into `positions`), without the dispatch; with `ANGLES` false,
+/// the angles are left out (zeros), and with them their two `atan2`.
 #[inline(always)]
-fn batch_lanes(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
+fn batch_lanes<const ANGLES: bool>(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
     let n = faces.len();
     debug_assert!((1..=LANES).contains(&n));
     // Coordinates by corner and axis, lane by lane; a short batch repeats
@@ -146,11 +166,13 @@ fn batch_lanes(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mu
         let second = !first && l1 >= l2;
         let x0 = pick(first, d0, pick(second, d1, d2));
         let x1 = pick(first, d1, pick(second, d2, d0));
-        let (a0, a1) = (atan2_lane(double_area, x0), atan2_lane(double_area, x1));
-        let a2 = PI - a0 - a1;
-        angle[0][i] = pick(first, a0, pick(second, a2, a1));
-        angle[1][i] = pick(first, a1, pick(second, a0, a2));
-        angle[2][i] = pick(first, a2, pick(second, a1, a0));
+        if ANGLES {
+            let (a0, a1) = (atan2_lane(double_area, x0), atan2_lane(double_area, x1));
+            let a2 = PI - a0 - a1;
+            angle[0][i] = pick(first, a0, pick(second, a2, a1));
+            angle[1][i] = pick(first, a1, pick(second, a0, a2));
+            angle[2][i] = pick(first, a2, pick(second, a1, a0));
+        }
         // Areas: mixed Voronoi (the Voronoi shares unless a corner is
         // obtuse, then half the area there and a quarter at the others) or
         // a third of the area.
@@ -182,7 +204,8 @@ fn batch_lanes(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mu
             [0, 1, 2].map(|k| (angle[k][i], area[k][i]))
         } else {
             let tri = faces[i].map(|v| positions[v as usize]);
-            let (angles, areas) = corner_angles_and_masses(tri, kind);
+            let (angles, areas) =
+                if ANGLES { corner_angles_and_masses(tri, kind) } else { ([0.0; 3], corner_masses(tri, kind)) };
             [0, 1, 2].map(|k| (angles[k], areas[k]))
         };
     }
@@ -224,7 +247,9 @@ mod tests {
         out
     }
 
-    fn check(run: impl Fn(&[DVec3], &[[u32; 3]], MassKind, &mut CornerBatch)) {
+    /// `run` against the scalar corners, with the angles or (`angles`
+    /// false) with zeros in their place.
+    fn check(angles: bool, run: impl Fn(&[DVec3], &[[u32; 3]], MassKind, &mut CornerBatch)) {
         for kind in MassKind::ALL {
             for seed in 0..4 {
                 let tris = triangles(seed, 3001);
@@ -234,11 +259,14 @@ mod tests {
                 for (b, chunk) in faces.chunks(LANES).enumerate() {
                     run(&positions, chunk, kind, &mut out);
                     for (i, face) in chunk.iter().enumerate() {
-                        let (angles, areas) = corner_angles_and_masses(face.map(|v| positions[v as usize]), kind);
+                        let tri = face.map(|v| positions[v as usize]);
+                        let (expected, areas) = corner_angles_and_masses(tri, kind);
+                        assert_eq!(areas, corner_masses(tri, kind));
+                        let expected = if angles { expected } else { [0.0; 3] };
                         for k in 0..3 {
                             assert_eq!(
                                 (out[i][k].0.to_bits(), out[i][k].1.to_bits()),
-                                (angles[k].to_bits(), areas[k].to_bits()),
+                                (expected[k].to_bits(), areas[k].to_bits()),
                                 "{kind} face {} corner {k}: {:?}",
                                 b * LANES + i,
                                 tris[b * LANES + i]
@@ -252,15 +280,24 @@ mod tests {
 
     #[test]
     fn batches_equal_the_scalar_corners_bit_for_bit() {
-        check(batch_lanes);
+        check(true, batch_lanes::<true>);
+        check(false, batch_lanes::<false>);
     }
 
     #[cfg(target_arch = "x86_64")]
     #[test]
     fn the_avx2_batches_too() {
         if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor has AVX2, checked just above.
-            check(|p, f, k, o| unsafe { batch_avx2(p, f, k, o) });
+            for angles in [true, false] {
+                // SAFETY: the processor has AVX2, checked just above.
+                check(angles, |p, f, k, o| unsafe {
+                    if angles {
+                        batch_avx2::<true>(p, f, k, o)
+                    } else {
+                        batch_avx2::<false>(p, f, k, o)
+                    }
+                });
+            }
         }
     }
 }

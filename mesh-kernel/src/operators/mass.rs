@@ -3,6 +3,7 @@
 
 use sprs::CsMat;
 
+use super::corner_batch::{corner_masses_batch, CornerBatch, CORNER_BATCH};
 use super::pattern::EdgePattern;
 use crate::error::MeshError;
 use crate::geometry::TriangleParts;
@@ -42,18 +43,26 @@ impl MassKind {
 
 /// Per-vertex lumped areas. For [`MassKind::Galerkin`] this is the row sum of
 /// the Galerkin matrix, which equals the barycentric area. Isolated vertices
-/// get zero. O(F), on several threads ([`crate::par::scatter_reading`]), with a
-/// result that does not depend on their count.
+/// get zero. O(F), eight faces at a time (the corner areas of the Gaussian
+/// curvature's batches, without the angles), on several threads
+/// ([`crate::par::scatter_batched`]), with a result that does not depend
+/// on their count: bit for bit the face-by-face sums. One face at a time,
+/// the mixed Voronoi mass took 2.45-2.49 ms on a 40,962-vertex icosphere
+/// and 32.4-32.5 ms at 470,274 vertices in file order, against 1.18-1.21
+/// and 17.3-17.4 in batches (one core, alternated, 2026-12-06).
 pub fn lumped_mass(mesh: &TriMesh, kind: MassKind) -> Vec<f64> {
-    crate::par::scatter_reading(
+    crate::par::scatter_batched(
         mesh.vertex_count(),
         mesh.faces(),
         mesh.positions(),
         0.0,
+        |first| {
+            let mut corners: CornerBatch = [[(0.0, 0.0); 3]; CORNER_BATCH];
+            corner_masses_batch(mesh, first, kind, &mut corners);
+            corners
+        },
         #[inline(always)]
-        |f| corner_masses(mesh.triangle(crate::FaceId::new(f)), kind),
-        #[inline(always)]
-        |m, share| *m += share,
+        |m, (_, share): (f64, f64)| *m += share,
     )
 }
 
@@ -164,6 +173,37 @@ mod tests {
                 let lumped: f64 = lumped_mass(&m, kind).iter().sum();
                 assert!((lumped - area).abs() < 1e-10 * area);
             }
+        }
+    }
+
+    /// The lumped masses, eight faces at a time and on several threads, are
+    /// the face-by-face sums in face order, bit for bit: on a jittered
+    /// torus in shuffled face order, with obtuse, zero-area and tiny faces.
+    #[test]
+    fn lumped_masses_are_the_face_order_sums() {
+        let m = shapes::torus(2.0, 0.5, 120, 60).unwrap();
+        let mut rng = crate::random::SplitMix64::new(7);
+        let mut p = m.positions().to_vec();
+        for q in &mut p {
+            *q += 0.02 * glam::DVec3::new(rng.signed(), rng.signed(), rng.signed());
+        }
+        p[5] = p[6];
+        p[200] *= 1e-70;
+        let mut faces = m.faces().to_vec();
+        for i in (1..faces.len()).rev() {
+            faces.swap(i, rng.below(i + 1));
+        }
+        let m = TriMesh::new(p, faces).unwrap();
+        for kind in MassKind::ALL {
+            let mut expected = vec![0.0; m.vertex_count()];
+            for (f, face) in m.faces().iter().enumerate() {
+                let shares = corner_masses(m.triangle(crate::FaceId::new(f)), kind);
+                for (v, share) in face.iter().zip(shares) {
+                    expected[*v as usize] += share;
+                }
+            }
+            let got = lumped_mass(&m, kind);
+            assert!(got.iter().zip(&expected).all(|(a, b)| a.to_bits() == b.to_bits()), "{kind}");
         }
     }
 
