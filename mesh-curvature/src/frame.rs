@@ -72,20 +72,14 @@ impl Sym2 {
     }
 }
 
-/// `sqrt(x^2 + y^2)` without over- or underflow: the plain formula where
-/// the larger square can neither overflow nor underflow (the smaller one
-/// may underflow only where it is below the larger's last bit), within an
-/// ulp or two of libm's `hypot`, which is used elsewhere: 7.7 ns against
-/// 18 in a chain of dependent calls (2026-12-06), 1.4 ms of the default
-/// fit's 44 on a 40,962-vertex icosphere.
+/// `sqrt(x^2 + y^2)` without over- or underflow
+/// ([`mesh_kernel::geometry::norm`]: the plain formula wherever the squares
+/// are safe), where libm's `hypot` took 18 ns against 7.7 in a chain of
+/// dependent calls (2026-12-06), 1.4 ms of the default fit's 44 on a
+/// 40,962-vertex icosphere.
 #[inline]
 fn hypot(x: f64, y: f64) -> f64 {
-    let m = x.abs().max(y.abs());
-    if (1e-150..1e150).contains(&m) {
-        (x * x + y * y).sqrt()
-    } else {
-        x.hypot(y)
-    }
+    mesh_kernel::geometry::norm(DVec3::new(x, y, 0.0))
 }
 
 /// The rotation taking unit vector `from` to unit vector `to` about their
