@@ -54,8 +54,11 @@ pub struct MeanCurvature {
 ///
 /// Works on any mesh: zero-area faces add no stiffness, values are finite
 /// everywhere and [`MeanCurvature::status`] says which are estimates.
-/// Cost O(V + F): Laplacian assembly, one sparse product with the three
-/// coordinate columns (in parallel over rows with the `rayon` feature).
+/// Cost O(V + F): one pass over the faces for `L x`
+/// ([`mesh_kernel::operators::cotan_laplacian_apply`], from differences of
+/// positions, so that a mesh far from the origin loses no accuracy; the
+/// Laplacian is not assembled), beside the vertex areas and normals of the
+/// mesh's geometry cache (on several threads with the `rayon` feature).
 ///
 /// # Errors
 /// None in practice for a valid `TriMesh` (the result type leaves room for `CurvatureError::Mesh`); vertices
@@ -102,14 +105,8 @@ impl MeanCurvature {
 
 /// `(L x)_i` for every vertex, and the vertex areas. O(V + F).
 fn laplacian_and_area(mesh: &TriMesh, kind: MassKind) -> (Vec<DVec3>, Vec<f64>) {
-    let p = mesh.positions();
     par::join(
-        || {
-            let l = mesh.geometry().cotan_laplacian();
-            par::map(mesh.vertex_count(), |i| {
-                l.outer_view(i).map_or(DVec3::ZERO, |row| row.iter().map(|(j, w)| *w * p[j]).sum::<DVec3>())
-            })
-        },
+        || mesh_kernel::operators::cotan_laplacian_apply(mesh, mesh.positions()),
         || mesh.geometry().lumped_mass(kind).to_vec(),
     )
 }

@@ -21,6 +21,7 @@ use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use glam::DVec3;
 
+use super::laplacian::{triangle_cotans, DEGENERATE_TOLERANCE};
 use super::mass::{corner_angles_and_masses, corner_masses, MassKind};
 use crate::geometry::{rotated_atan, PI_2_LO, PI_4_LO, TAN_PI_8};
 use crate::TriMesh;
@@ -51,35 +52,44 @@ pub(crate) fn corner_masses_batch(mesh: &TriMesh, first: usize, kind: MassKind, 
     batch::<false>(mesh, first, kind, out)
 }
 
-/// The batch functions' dispatch: AVX2 where the processor has it.
+/// The batch functions' dispatch: the faces `first..` of the batch, or
+/// `None` past the last face.
 #[inline(always)]
 fn batch<const ANGLES: bool>(mesh: &TriMesh, first: usize, kind: MassKind, out: &mut CornerBatch) -> usize {
-    let faces = mesh.faces();
-    if first >= faces.len() {
-        return 0;
-    }
-    let faces = &faces[first..faces.len().min(first + LANES)];
+    let Some(faces) = batch_faces(mesh, first) else { return 0 };
     let positions = mesh.positions();
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the processor has AVX2, checked just above.
-        unsafe { batch_avx2::<ANGLES>(positions, faces, kind, out) };
-        return faces.len();
-    }
-    batch_lanes::<ANGLES>(positions, faces, kind, out);
+    with_avx2_if_present(
+        #[inline(always)]
+        || batch_lanes::<ANGLES>(positions, faces, kind, out),
+    );
     faces.len()
 }
 
-/// [`batch_lanes`] compiled for AVX2.
+/// The faces of the batch that starts at `first` (up to [`CORNER_BATCH`]),
+/// `None` from `first >= face_count`.
+#[inline(always)]
+fn batch_faces(mesh: &TriMesh, first: usize) -> Option<&[[u32; 3]]> {
+    let faces = mesh.faces();
+    (first < faces.len()).then(|| &faces[first..faces.len().min(first + LANES)])
+}
+
+/// `run()`, compiled for AVX2 where the processor has it (detected at run
+/// time): the lanes' loops inline into it and become 4-wide.
+#[inline(always)]
+fn with_avx2_if_present<R>(run: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the processor has AVX2, checked just above.
+        return unsafe { in_avx2(run) };
+    }
+    run()
+}
+
+/// `run()` compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn batch_avx2<const ANGLES: bool>(
-    positions: &[DVec3],
-    faces: &[[u32; 3]],
-    kind: MassKind,
-    out: &mut CornerBatch,
-) {
-    batch_lanes::<ANGLES>(positions, faces, kind, out);
+unsafe fn in_avx2<R>(run: impl FnOnce() -> R) -> R {
+    run()
 }
 
 /// `if c { a } else { b }`, which the compiler keeps as a select (a vector
@@ -117,15 +127,12 @@ fn atan2_lane(y: f64, x: f64) -> f64 {
     rotated_atan(u, hi, lo)
 }
 
-/// [`corner_angles_and_masses_batch`] on `faces` (1 to [`CORNER_BATCH`],
-/// corners into `positions`), without the dispatch; with `ANGLES` false,
-/// the angles are left out (zeros), and with them their two `atan2`.
+/// The corner coordinates of `faces` (1 to [`CORNER_BATCH`]) by corner
+/// and axis, lane by lane; a short batch repeats its last face.
 #[inline(always)]
-fn batch_lanes<const ANGLES: bool>(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
+fn gather(positions: &[DVec3], faces: &[[u32; 3]]) -> [[f64; LANES]; 9] {
     let n = faces.len();
     debug_assert!((1..=LANES).contains(&n));
-    // Coordinates by corner and axis, lane by lane; a short batch repeats
-    // its last face.
     let mut p = [[0.0f64; LANES]; 9];
     for i in 0..LANES {
         let face = faces[i.min(n - 1)];
@@ -134,11 +141,27 @@ fn batch_lanes<const ANGLES: bool>(positions: &[DVec3], faces: &[[u32; 3]], kind
             (p[3 * k][i], p[3 * k + 1][i], p[3 * k + 2][i]) = (q.x, q.y, q.z);
         }
     }
-    let voronoi = kind == MassKind::MixedVoronoi;
-    let mut angle = [[0.0f64; LANES]; 3];
-    let mut area = [[0.0f64; LANES]; 3];
-    let mut fast = [false; LANES];
-    for i in 0..LANES {
+    p
+}
+
+/// What every kernel computes of the triangle in lane `i`, operation for
+/// operation as the scalar code does.
+struct LaneTriangle {
+    /// Squared length of edge k, from corner k to k + 1.
+    squared: [f64; 3],
+    /// The dot product of the two edges leaving corner k.
+    dots: [f64; 3],
+    /// `|(b - a) x (c - a)|`.
+    double_area: f64,
+    /// The largest coordinate of `b - a` and `c - a` (`triangle_in_own_unit`'s
+    /// size) and of the cross product.
+    size: f64,
+    cross_size: f64,
+}
+
+impl LaneTriangle {
+    #[inline(always)]
+    fn new(p: &[[f64; LANES]; 9], i: usize) -> Self {
         let (ax, ay, az) = (p[0][i], p[1][i], p[2][i]);
         let (bx, by, bz) = (p[3][i], p[4][i], p[5][i]);
         let (cx, cy, cz) = (p[6][i], p[7][i], p[8][i]);
@@ -156,10 +179,78 @@ fn batch_lanes<const ANGLES: bool>(positions: &[DVec3], faces: &[[u32; 3]], kind
         let (nx, ny, nz) = (e0y * e2z - e2y * e0z, e0z * e2x - e2z * e0x, e0x * e2y - e2x * e0y);
         let cross_size = max(nx.abs(), max(ny.abs(), nz.abs()));
         let double_area = ((nx * nx) + (ny * ny) + (nz * nz)).sqrt();
-        // The dot product of the two edges at each corner.
         let d0 = -((e0x * e2x) + (e0y * e2y) + (e0z * e2z));
         let d1 = -((e1x * e0x) + (e1y * e0y) + (e1z * e0z));
         let d2 = -((e2x * e1x) + (e2y * e1y) + (e2z * e1z));
+        Self { squared: [l0, l1, l2], dots: [d0, d1, d2], double_area, size, cross_size }
+    }
+
+    /// Whether the scalar code takes the same path: no rescaling by
+    /// `triangle_in_own_unit` (coordinate differences in `[1e-60,
+    /// 1e60]`), and [`crate::geometry::norm`]'s plain square root (a cross
+    /// product in `[1e-150, 1e150]`).
+    #[inline(always)]
+    fn squares_are_safe(&self) -> bool {
+        self.size > 1e-60 && self.size < 1e60 && self.cross_size > 1e-150 && self.cross_size < 1e150
+    }
+}
+
+/// The cotangents of the corners of `mesh`'s faces `first..` (up to
+/// [`CORNER_BATCH`] of them) into `out`, `[f][k]` at corner `k` of the
+/// batch's face `f`: bit for bit [`triangle_cotans`] face by face (zeros
+/// on a degenerate face), computed as the corner batches are. Returns how
+/// many faces were done (0 from `first >= face_count`). O(1).
+pub(crate) fn cotans_batch(mesh: &TriMesh, first: usize, out: &mut [[f64; 3]; CORNER_BATCH]) -> usize {
+    let Some(faces) = batch_faces(mesh, first) else { return 0 };
+    let positions = mesh.positions();
+    with_avx2_if_present(
+        #[inline(always)]
+        || cotan_lanes(positions, faces, out),
+    );
+    faces.len()
+}
+
+/// [`cotans_batch`] on `faces` (1 to [`CORNER_BATCH`]), without the
+/// dispatch. Faces off the fast path (see [`LaneTriangle`]) are
+/// recomputed by [`triangle_cotans`].
+#[inline(always)]
+fn cotan_lanes(positions: &[DVec3], faces: &[[u32; 3]], out: &mut [[f64; 3]; CORNER_BATCH]) {
+    let p = gather(positions, faces);
+    let mut cot = [[0.0f64; LANES]; 3];
+    let mut fast = [false; LANES];
+    for i in 0..LANES {
+        let t = LaneTriangle::new(&p, i);
+        let ([l0, l1, l2], [d0, d1, d2], double_area) = (t.squared, t.dots, t.double_area);
+        // triangle_cotans' test, on |b - a|^2, |c - a|^2 and |c - b|^2.
+        let proper = double_area > DEGENERATE_TOLERANCE * max(max(l0, l2), l1);
+        cot[0][i] = pick(proper, d0 / double_area, 0.0);
+        cot[1][i] = pick(proper, d1 / double_area, 0.0);
+        cot[2][i] = pick(proper, d2 / double_area, 0.0);
+        fast[i] = t.squares_are_safe();
+    }
+    for (i, face) in faces.iter().enumerate() {
+        out[i] = if fast[i] {
+            [cot[0][i], cot[1][i], cot[2][i]]
+        } else {
+            triangle_cotans(face.map(|v| positions[v as usize]))
+        };
+    }
+}
+
+/// [`corner_angles_and_masses_batch`] on `faces` (1 to [`CORNER_BATCH`],
+/// corners into `positions`), without the dispatch; with `ANGLES` false,
+/// the angles are left out (zeros), and with them their two `atan2`.
+#[inline(always)]
+fn batch_lanes<const ANGLES: bool>(positions: &[DVec3], faces: &[[u32; 3]], kind: MassKind, out: &mut CornerBatch) {
+    let n = faces.len();
+    let p = gather(positions, faces);
+    let voronoi = kind == MassKind::MixedVoronoi;
+    let mut angle = [[0.0f64; LANES]; 3];
+    let mut area = [[0.0f64; LANES]; 3];
+    let mut fast = [false; LANES];
+    for i in 0..LANES {
+        let t = LaneTriangle::new(&p, i);
+        let ([l0, l1, l2], [d0, d1, d2], double_area) = (t.squared, t.dots, t.double_area);
         // The ends of the longest edge m (first of equals) are corners m
         // and m + 1; the third angle is pi minus theirs.
         let first = l0 >= l1 && l0 >= l2;
@@ -197,7 +288,7 @@ fn batch_lanes<const ANGLES: bool>(positions: &[DVec3], faces: &[[u32; 3]], kind
         area[0][i] = pick(voronoi, pick(s0 == 0.0, 0.0, s0), third);
         area[1][i] = pick(voronoi, pick(s1 == 0.0, 0.0, s1), third);
         area[2][i] = pick(voronoi, pick(s2 == 0.0, 0.0, s2), third);
-        fast[i] = size > 1e-60 && size < 1e60 && cross_size > 1e-150 && cross_size < 1e150 && x0 > 0.0 && x1 > 0.0;
+        fast[i] = t.squares_are_safe() && x0 > 0.0 && x1 > 0.0;
     }
     for i in 0..n {
         out[i] = if fast[i] {
@@ -284,20 +375,52 @@ mod tests {
         check(false, batch_lanes::<false>);
     }
 
-    #[cfg(target_arch = "x86_64")]
+    /// The dispatched batches (4-wide where the processor has AVX2).
     #[test]
-    fn the_avx2_batches_too() {
-        if std::arch::is_x86_feature_detected!("avx2") {
-            for angles in [true, false] {
-                // SAFETY: the processor has AVX2, checked just above.
-                check(angles, |p, f, k, o| unsafe {
-                    if angles {
-                        batch_avx2::<true>(p, f, k, o)
-                    } else {
-                        batch_avx2::<false>(p, f, k, o)
-                    }
-                });
+    fn the_dispatched_batches_too() {
+        check(true, |p, f, k, o| {
+            with_avx2_if_present(
+                #[inline(always)]
+                || batch_lanes::<true>(p, f, k, o),
+            )
+        });
+        check(false, |p, f, k, o| {
+            with_avx2_if_present(
+                #[inline(always)]
+                || batch_lanes::<false>(p, f, k, o),
+            )
+        });
+    }
+
+    /// The cotangent batches, plain and dispatched, against
+    /// `triangle_cotans` face by face, to the bit.
+    #[test]
+    fn cotangent_batches_equal_the_scalar_cotangents_bit_for_bit() {
+        for (seed, dispatched) in (10..14).zip([false, true].into_iter().cycle()) {
+            let run = |p: &[DVec3], f: &[[u32; 3]], o: &mut [[f64; 3]; LANES]| {
+                if dispatched {
+                    with_avx2_if_present(
+                        #[inline(always)]
+                        || cotan_lanes(p, f, o),
+                    )
+                } else {
+                    cotan_lanes(p, f, o)
+                }
+            };
+            let tris = triangles(seed, 3001);
+            let positions: Vec<DVec3> = tris.iter().flatten().copied().collect();
+            let faces: Vec<[u32; 3]> = (0..tris.len() as u32).map(|f| [3 * f, 3 * f + 1, 3 * f + 2]).collect();
+            let mut out = [[0.0; 3]; LANES];
+            let mut degenerate = 0;
+            for (b, chunk) in faces.chunks(LANES).enumerate() {
+                run(&positions, chunk, &mut out);
+                for (i, face) in chunk.iter().enumerate() {
+                    let expected = triangle_cotans(face.map(|v| positions[v as usize]));
+                    degenerate += usize::from(expected == [0.0; 3]);
+                    assert_eq!(out[i].map(f64::to_bits), expected.map(f64::to_bits), "face {}", b * LANES + i);
+                }
             }
+            assert!(degenerate > 100, "{degenerate} degenerate faces");
         }
     }
 }

@@ -4,6 +4,7 @@ use sprs::CsMat;
 
 use glam::DVec3;
 
+use super::corner_batch::{cotans_batch, CORNER_BATCH};
 use super::pattern::EdgePattern;
 use crate::error::MeshError;
 use crate::mesh::TriMesh;
@@ -138,6 +139,46 @@ pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
     )
 }
 
+/// `L v` for one vector per vertex, without assembling `L`
+/// ([`cotan_laplacian`]): `(L v)_i = sum_j w_ij (v_i - v_j)` over the
+/// edges `ij` (weights of [`cotan_weights`]), each face adding its three
+/// sides' terms to their ends. Built from differences `v_i - v_j`, it
+/// keeps its relative accuracy when the values lie far from the origin,
+/// where the assembled product, `L_ii v_i` minus the neighbours' `w_ij
+/// v_j`, cancels (positions of a mesh 10^7 units off the origin: a
+/// relative error of 7e-6 in the mean curvature of a unit sphere, 2e-16
+/// here). One pass over the faces, eight at a time (the cotangents of the
+/// corner batches), sums in face order on any thread count
+/// ([`par::scatter_batched`]). O(V + F).
+///
+/// # Panics
+/// When `values` does not hold one vector per vertex.
+pub fn cotan_laplacian_apply(mesh: &TriMesh, values: &[DVec3]) -> Vec<DVec3> {
+    assert_eq!(values.len(), mesh.vertex_count(), "one value per vertex");
+    let faces = mesh.faces();
+    par::scatter_batched(
+        mesh.vertex_count(),
+        faces,
+        mesh.positions(),
+        DVec3::ZERO,
+        |first| {
+            let mut cotans = [[0.0; 3]; CORNER_BATCH];
+            let count = cotans_batch(mesh, first, &mut cotans);
+            let mut terms = [[DVec3::ZERO; 3]; CORNER_BATCH];
+            for (f, (cot, terms)) in cotans.iter().zip(&mut terms).enumerate().take(count) {
+                // Corner k's cotangent weighs the side opposite it.
+                let w = cot.map(|c| 0.5 * c);
+                let [a, b, c] = faces[first + f].map(|v| values[v as usize]);
+                let (ab, bc, ca) = (w[2] * (a - b), w[0] * (b - c), w[1] * (c - a));
+                *terms = [ab - ca, bc - ab, ca - bc];
+            }
+            terms
+        },
+        #[inline(always)]
+        |sum, x| *sum += x,
+    )
+}
+
 /// The cotangent Laplacian L (eq. 2.15): L_ij = -(cot alpha_ij + cot beta_ij)/2,
 /// L_ii = -sum_j L_ij. Symmetric positive semi-definite on meshes whose
 /// weights are non-negative, rows sum to zero, `L x = 0` for linear `x` on a
@@ -196,6 +237,33 @@ mod tests {
             worst = worst.max((h - 1.0).abs());
         }
         assert!(worst < 1e-2, "{worst}");
+    }
+
+    /// The matrix-free product equals the assembled one on a mesh with a
+    /// boundary, a fin (an edge of three faces), a flipped face, a
+    /// zero-area face and an isolated vertex, for arbitrary values.
+    #[test]
+    fn applying_equals_the_assembled_product() {
+        let sphere = shapes::icosphere(2).unwrap();
+        let mut positions = sphere.positions().to_vec();
+        let mut faces: Vec<[u32; 3]> = sphere.faces()[..sphere.faces().len() - 5].to_vec();
+        faces[2] = [faces[2][0], faces[2][2], faces[2][1]];
+        let n = positions.len() as u32;
+        let [a, b, _] = faces[7];
+        positions.extend([positions[0] * 1.5, (positions[a as usize] + positions[b as usize]) * 0.5, DVec3::ONE]);
+        faces.extend([[b, a, n], [a, b, n + 1]]);
+        let mesh = TriMesh::new(positions, faces).unwrap();
+        assert!(!mesh.connectivity().is_manifold());
+        let values: Vec<DVec3> = (0..mesh.vertex_count())
+            .map(|i| DVec3::new((i as f64).sin(), (i * i % 7) as f64, 1.0 / (1.0 + i as f64)))
+            .collect();
+        let l = cotan_laplacian(&mesh);
+        let applied = cotan_laplacian_apply(&mesh, &values);
+        for (i, row) in l.outer_iterator().enumerate() {
+            let product: DVec3 = row.iter().map(|(j, w)| *w * values[j]).sum();
+            assert!((product - applied[i]).length() < 1e-12, "vertex {i}: {product} against {}", applied[i]);
+        }
+        assert_eq!(applied[mesh.vertex_count() - 1], DVec3::ZERO);
     }
 
     #[test]

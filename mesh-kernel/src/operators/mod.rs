@@ -21,7 +21,7 @@ mod pattern;
 pub use corner_batch::{corner_angles_and_masses_batch, CornerBatch, CORNER_BATCH};
 pub use gradient::{divergence, gradient};
 pub use intrinsic::{cotan_from_lengths, is_delaunay_edge, IntrinsicOptions, IntrinsicTriangulation};
-pub use laplacian::{cotan_laplacian, cotan_weights, halfedge_cotans, LaplacianKind};
+pub use laplacian::{cotan_laplacian, cotan_laplacian_apply, cotan_weights, halfedge_cotans, LaplacianKind};
 pub use mass::{corner_angles_and_masses, corner_masses, lumped_mass, mass_matrix, mixed_voronoi_corners, MassKind};
 pub use pattern::EdgePattern;
 
