@@ -573,22 +573,31 @@ pub fn surface_area(mesh: &TriMesh) -> f64 {
     sum * unit * unit
 }
 
-/// Signed volume enclosed by the mesh, sum of a . (b x c) / 6 over faces
-/// (divergence theorem), in the mesh's [`crate::units::length_unit`] like
-/// [`surface_area`]. Exact for closed outward-oriented meshes; for open
-/// meshes it depends on the origin.
+/// Signed volume enclosed by the mesh: the sum over the faces of the
+/// signed volumes of the cones from the bounding box's centre
+/// ([`cone_volume6`], divergence theorem), in the mesh's
+/// [`crate::units::length_unit`] like [`surface_area`]. Exact for closed
+/// outward-oriented meshes, wherever they lie; for open meshes it depends
+/// on the apex (the bounding box's centre).
 pub fn enclosed_volume(mesh: &TriMesh) -> f64 {
-    let unit = crate::units::length_unit(mesh);
+    let Some(b) = mesh.geometry().bounding_box() else { return 0.0 };
+    let (centre, unit) = (b.min * 0.5 + b.max * 0.5, crate::units::length_unit(mesh));
     let p = mesh.positions();
-    let sum = mesh
-        .faces()
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| p[v as usize] / unit);
-            a.dot(b.cross(c))
-        })
-        .fold(0.0, |s, x| s + x);
+    let sum = mesh.faces().iter().map(|t| cone_volume6(t.map(|v| p[v as usize]), centre, unit)).fold(0.0, |s, x| s + x);
     sum / 6.0 * unit * unit * unit
+}
+
+/// Six times the signed volume of the cone from `apex` over a triangle,
+/// in units of `unit^3` (a power of two, by which coordinates divide
+/// exactly): `(a - o) . ((b - o) x (c - o)) / unit^3`. Summed over a
+/// closed surface with an apex near it, the volume keeps its accuracy
+/// wherever the surface lies; about the coordinates' origin, the terms
+/// grow with the distance to it and cancel (a sphere 10^6 radii away: a
+/// relative error of about 10^-4). O(1).
+#[inline]
+pub fn cone_volume6(tri: [DVec3; 3], apex: DVec3, unit: f64) -> f64 {
+    let [a, b, c] = tri.map(|p| (p - apex) / unit);
+    a.dot(b.cross(c))
 }
 
 #[cfg(test)]
@@ -689,6 +698,23 @@ mod tests {
             }
         }
         assert_eq!(Aabb::of(&[]), None);
+    }
+
+    /// A sphere 10^6 or 10^9 radii from the origin has the volume of the
+    /// same (rounded) positions moved back, which the subtraction recovers
+    /// exactly (about the origin, the terms cancelled: the volume was 71
+    /// times too large at 10^6).
+    #[test]
+    fn volume_does_not_depend_on_where_the_mesh_lies() {
+        let sphere = shapes::icosphere(3).unwrap();
+        for offset in [1e6, 1e9] {
+            let far = DVec3::new(offset, -offset, 0.5 * offset);
+            let moved: Vec<DVec3> = sphere.positions().iter().map(|&p| p + far).collect();
+            let back: Vec<DVec3> = moved.iter().map(|&p| p - far).collect();
+            let [moved, back] =
+                [moved, back].map(|p| enclosed_volume(&TriMesh::new(p, sphere.faces().to_vec()).unwrap()));
+            assert!((moved - back).abs() < 1e-12 * back && back > 4.0, "offset {offset:e}: {moved} against {back}");
+        }
     }
 
     #[test]

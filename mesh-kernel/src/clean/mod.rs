@@ -356,6 +356,23 @@ mod tests {
         assert!(vol > 0.0);
     }
 
+    /// An inside-out sphere is turned outward wherever it lies and in any
+    /// unit: 10^6 and 10^9 radii from the origin (where the volume about
+    /// the origin cancelled to the wrong sign at 10^6), and scaled by
+    /// 1e-150 and 1e150 (where its cubes underflowed and overflowed).
+    #[test]
+    fn orients_an_inside_out_sphere_outward_wherever_it_lies() {
+        let sphere = crate::shapes::icosphere(2).unwrap();
+        let inward: Vec<[u32; 3]> = sphere.faces().iter().map(|&[a, b, c]| [a, c, b]).collect();
+        for (offset, scale) in [(1e6, 1.0), (1e9, 1.0), (0.0, 1e-150), (0.0, 1e150), (3.0, 1e150)] {
+            let far = DVec3::new(offset, -offset, 0.5 * offset);
+            let p: Vec<DVec3> = sphere.positions().iter().map(|&q| (q + far) * scale).collect();
+            let (m, r) = clean(p, inward.clone(), &CleanOptions::default()).unwrap();
+            assert_eq!(r.flipped_faces, inward.len(), "offset {offset:e}, scale {scale:e}");
+            assert_eq!(m.faces(), sphere.faces(), "offset {offset:e}, scale {scale:e}");
+        }
+    }
+
     #[test]
     fn clean_rejects_bad_indices() {
         let e = clean(vec![DVec3::ZERO], vec![[0, 1, 2]], &CleanOptions::default()).unwrap_err();

@@ -10,7 +10,9 @@ use crate::mesh::TriMesh;
 /// [`super::CleanOptions::manifold`] to resolve them). Returns the flip flags
 /// and the number of connected components holding a patch that admits no
 /// consistent orientation (Moebius-like; such patches are left untouched).
-/// Breadth-first over faces, O(F).
+/// Breadth-first over faces, O(F). The volume does not depend on where the
+/// mesh lies or on its unit of length (cones from one of its vertices,
+/// [`crate::geometry::cone_volume6`], in a power of two near its size).
 pub fn orient_faces(mesh: &TriMesh) -> (Vec<bool>, usize) {
     let conn = mesh.connectivity();
     let nf = mesh.face_count();
@@ -62,27 +64,43 @@ pub fn orient_faces(mesh: &TriMesh) -> (Vec<bool>, usize) {
             }
             continue;
         }
-        if closed {
-            // Signed volume by the divergence theorem; make it positive.
-            let p = mesh.positions();
-            let volume: f64 = component
-                .iter()
-                .map(|&f| {
-                    let [a, b, c] = mesh.faces()[f].map(|v| p[v as usize]);
-                    let v = a.dot(b.cross(c));
-                    if flip[f] {
-                        -v
-                    } else {
-                        v
-                    }
-                })
-                .sum();
-            if volume < 0.0 {
-                for &f in &component {
-                    flip[f] = !flip[f];
-                }
+        // Closed patches enclose a positive volume.
+        if closed && signed_volume(mesh, &component, &flip) < 0.0 {
+            for &f in &component {
+                flip[f] = !flip[f];
             }
         }
     }
     (flip, unorientable.iter().filter(|&&u| u).count())
+}
+
+/// The sign-bearing volume of a closed `component` with the faces `flip`
+/// marks reversed (divergence theorem): cones from one of its vertices, in
+/// a power of two near its size ([`crate::geometry::cone_volume6`]), so
+/// that neither a distant origin (a scan in survey coordinates, whose
+/// terms about the origin cancel) nor an extreme unit (cubes of `1e150`
+/// overflow) changes its sign. O(faces of the component).
+fn signed_volume(mesh: &TriMesh, component: &[usize], flip: &[bool]) -> f64 {
+    let (p, faces) = (mesh.positions(), mesh.faces());
+    let Some(&first) = component.first() else { return 0.0 };
+    let apex = p[faces[first][0] as usize];
+    let size = component
+        .iter()
+        .flat_map(|&f| faces[f])
+        .fold(0.0_f64, |m, v| m.max((p[v as usize] - apex).abs().max_element()));
+    if !(size > 0.0 && size.is_finite()) {
+        return 0.0;
+    }
+    let unit = crate::geometry::power_of_two_near(size);
+    component
+        .iter()
+        .map(|&f| {
+            let v = crate::geometry::cone_volume6(faces[f].map(|v| p[v as usize]), apex, unit);
+            if flip[f] {
+                -v
+            } else {
+                v
+            }
+        })
+        .sum()
 }

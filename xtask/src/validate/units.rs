@@ -6,6 +6,10 @@
 //! same at `1e-300` and `1e300` for the values that stay in the range of
 //! `f64` there (degree -1, 0 or 1). Volumes (`s^3`, outside the range of
 //! `f64` at these scales) are left out.
+//!
+//! Nor does the place: every operation, and the enclosed volume, gives the
+//! same result on a mesh moved 10^6 sizes from the origin as on the same
+//! positions moved back.
 
 use mesh_curvature::{
     curvature_tensor, gaussian_curvature, mean_curvature, pointwise_curvature, PointwiseOptions, TensorOptions,
@@ -46,6 +50,8 @@ const OF_AREAS: &[&str] = &["first 6 eigenvectors (sign fixed)"];
 pub fn run(v: &mut Validator) {
     let meshes: [TestMesh; 3] =
         [("irregular torus", torus, CLOSED), ("dirty sphere", dirty_sphere, DIRTY), ("curved disk", curved_disk, DISK)];
+    placement(v, &meshes);
+    placement(v, &[("irregular torus", torus, VOLUME)]);
     for (name, make, operations) in meshes {
         let mesh = match make() {
             Ok(m) => m,
@@ -75,6 +81,34 @@ pub fn run(v: &mut Validator) {
         }
     }
 }
+
+/// Runs every operation on a mesh moved [`FAR`] sizes from the origin and
+/// on the same rounded positions moved back (exactly: each coordinate lies
+/// within a factor 2 of the offset's), which must agree to [`LIMIT`]: an
+/// answer may not depend on where the mesh sits (a scan in survey
+/// coordinates).
+fn placement(v: &mut Validator, meshes: &[TestMesh]) {
+    for &(name, make, operations) in meshes {
+        let Ok(mesh) = make() else { continue };
+        let offset = DVec3::new(FAR, -FAR, 0.5 * FAR);
+        let far: Vec<DVec3> = mesh.positions().iter().map(|&p| p + offset).collect();
+        let near: Vec<DVec3> = far.iter().map(|&p| p - offset).collect();
+        let [far, near] = [far, near].map(|p| TriMesh::new(p, mesh.faces().to_vec()));
+        let (Ok(far), Ok(near)) = (far, near) else {
+            return v.error(format!("{name}: moved"), "TriMesh::new refused a moved mesh");
+        };
+        for (op, _, f) in operations {
+            let label = format!("{name}, {op}: moved {FAR:e} vs moved back, max relative difference");
+            match (f(&far), f(&near)) {
+                (Ok(a), Ok(b)) => v.at_most(label, relative_difference(&a, &b, 1.0), LIMIT),
+                (Err(e), _) | (_, Err(e)) => v.error(label, e),
+            }
+        }
+    }
+}
+
+/// How far [`placement`] moves a mesh, in units of its size (about 1).
+const FAR: f64 = 1e6;
 
 /// `mesh` with every coordinate multiplied by `s`.
 fn scaled(mesh: &TriMesh, s: f64) -> mesh_kernel::Result<TriMesh> {
@@ -181,6 +215,10 @@ const CLOSED: &[Operation] = &[
             .collect())
     }),
 ];
+
+/// Checked for its placement only (a volume leaves the range of `f64` at
+/// the scales).
+const VOLUME: &[Operation] = &[("enclosed volume", 3, |m| Ok(vec![geometry::enclosed_volume(m)]))];
 
 const DIRTY: &[Operation] = &[
     ("clean (default options)", 0, |m| {
