@@ -65,8 +65,9 @@ pub struct MeanCurvature {
 /// where the estimate cannot be trusted are flagged in [`MeanCurvature::status`].
 pub fn mean_curvature(mesh: &TriMesh, options: &MeanOptions) -> Result<MeanCurvature> {
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
-    let (normals, (lx, area)) =
+    let (normals, lx_and_area) =
         par::join(|| mesh.geometry().vertex_normals(options.normals), || laplacian_and_area(&mesh, options.area));
+    let (lx, area) = lx_and_area?;
     Ok(assemble(&mesh, lx, area, normals).in_unit(unit))
 }
 
@@ -89,7 +90,7 @@ pub fn mean_curvature_with_normals(mesh: &TriMesh, area: MassKind, normals: &[DV
         });
     }
     let (mesh, unit) = mesh_kernel::units::normalized(mesh);
-    let (lx, area) = laplacian_and_area(&mesh, area);
+    let (lx, area) = laplacian_and_area(&mesh, area)?;
     Ok(assemble(&mesh, lx, area, normals).in_unit(unit))
 }
 
@@ -104,11 +105,12 @@ impl MeanCurvature {
 }
 
 /// `(L x)_i` for every vertex, and the vertex areas. O(V + F).
-fn laplacian_and_area(mesh: &TriMesh, kind: MassKind) -> (Vec<DVec3>, Vec<f64>) {
-    par::join(
+fn laplacian_and_area(mesh: &TriMesh, kind: MassKind) -> Result<(Vec<DVec3>, Vec<f64>)> {
+    let (lx, area) = par::join(
         || mesh_kernel::operators::cotan_laplacian_apply(mesh, mesh.positions()),
         || mesh.geometry().lumped_mass(kind).to_vec(),
-    )
+    );
+    Ok((lx?, area))
 }
 
 /// Integrated and pointwise mean curvature from `(L x)_i`, the areas and

@@ -1,7 +1,9 @@
 //! Corner angles and corner areas of [`CORNER_BATCH`] faces at a time, bit
 //! for bit those of [`corner_angles_and_masses`], for single passes over
 //! the faces such as the angle defect's and the lumped mass's
-//! ([`crate::par::scatter_batched`]).
+//! ([`crate::par::scatter_batched`]); and the corners' cotangents, bit for
+//! bit those of [`triangle_cotans`], for the Laplacian applied without
+//! assembling it ([`super::cotan_laplacian_apply`]).
 //!
 //! One face at a time, the work is a chain of dependent latencies (edge
 //! vectors, cross product, square root, two divisions and a polynomial for
@@ -15,7 +17,8 @@
 //! that the results are identical: faces outside its fast path (an edge's
 //! coordinates outside `[1e-60, 1e60]`, a cross product outside
 //! `[1e-150, 1e150]`, a right or obtuse angle at an end of the longest edge,
-//! zero area) are recomputed by `corner_angles_and_masses`.
+//! zero area) are recomputed by `corner_angles_and_masses` (the
+//! cotangents: outside the first two, by `triangle_cotans`).
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
@@ -52,8 +55,8 @@ pub(crate) fn corner_masses_batch(mesh: &TriMesh, first: usize, kind: MassKind, 
     batch::<false>(mesh, first, kind, out)
 }
 
-/// The batch functions' dispatch: the faces `first..` of the batch, or
-/// `None` past the last face.
+/// The corner batch of the faces `first..`, 4-wide where the processor has
+/// AVX2; how many faces it holds (0 past the last face).
 #[inline(always)]
 fn batch<const ANGLES: bool>(mesh: &TriMesh, first: usize, kind: MassKind, out: &mut CornerBatch) -> usize {
     let Some(faces) = batch_faces(mesh, first) else { return 0 };
@@ -86,6 +89,9 @@ fn with_avx2_if_present<R>(run: impl FnOnce() -> R) -> R {
 }
 
 /// `run()` compiled for AVX2.
+///
+/// # Safety
+/// The processor must have AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn in_avx2<R>(run: impl FnOnce() -> R) -> R {

@@ -151,12 +151,15 @@ pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
 /// corner batches), sums in face order on any thread count
 /// ([`par::scatter_batched`]). O(V + F).
 ///
-/// # Panics
-/// When `values` does not hold one vector per vertex.
-pub fn cotan_laplacian_apply(mesh: &TriMesh, values: &[DVec3]) -> Vec<DVec3> {
-    assert_eq!(values.len(), mesh.vertex_count(), "one value per vertex");
+/// # Errors
+/// `MeshError::Dimension` when `values` does not hold one vector per vertex.
+pub fn cotan_laplacian_apply(mesh: &TriMesh, values: &[DVec3]) -> Result<Vec<DVec3>, MeshError> {
+    if values.len() != mesh.vertex_count() {
+        let counts = format!("{} values for {} vertices", values.len(), mesh.vertex_count());
+        return Err(MeshError::Dimension(counts));
+    }
     let faces = mesh.faces();
-    par::scatter_batched(
+    Ok(par::scatter_batched(
         mesh.vertex_count(),
         faces,
         mesh.positions(),
@@ -176,7 +179,7 @@ pub fn cotan_laplacian_apply(mesh: &TriMesh, values: &[DVec3]) -> Vec<DVec3> {
         },
         #[inline(always)]
         |sum, x| *sum += x,
-    )
+    ))
 }
 
 /// The cotangent Laplacian L (eq. 2.15): L_ij = -(cot alpha_ij + cot beta_ij)/2,
@@ -258,7 +261,8 @@ mod tests {
             .map(|i| DVec3::new((i as f64).sin(), (i * i % 7) as f64, 1.0 / (1.0 + i as f64)))
             .collect();
         let l = cotan_laplacian(&mesh);
-        let applied = cotan_laplacian_apply(&mesh, &values);
+        let applied = cotan_laplacian_apply(&mesh, &values).unwrap();
+        assert!(cotan_laplacian_apply(&mesh, &values[1..]).is_err());
         for (i, row) in l.outer_iterator().enumerate() {
             let product: DVec3 = row.iter().map(|(j, w)| *w * values[j]).sum();
             assert!((product - applied[i]).length() < 1e-12, "vertex {i}: {product} against {}", applied[i]);
