@@ -145,9 +145,10 @@ pub fn cotan_weights(mesh: &TriMesh) -> Vec<f64> {
 /// sides' terms to their ends. Built from differences `v_i - v_j`, it
 /// keeps its relative accuracy when the values lie far from the origin,
 /// where the assembled product, `L_ii v_i` minus the neighbours' `w_ij
-/// v_j`, cancels (positions of a mesh 10^7 units off the origin: a
-/// relative error of 7e-6 in the mean curvature of a unit sphere, 2e-16
-/// here). One pass over the faces, eight at a time (the cotangents of the
+/// v_j`, cancels: the mean curvature of a unit sphere 10^7 radii from the
+/// origin differed by 6e-6 from that of the same positions moved back,
+/// and does not differ at all from differences (each `v_i - v_j` of
+/// such positions is exact). One pass over the faces, eight at a time (the cotangents of the
 /// corner batches), sums in face order on any thread count
 /// ([`par::scatter_batched`]). O(V + F).
 ///
