@@ -349,6 +349,9 @@ pub fn pointwise_curvature(mesh: &TriMesh, options: &PointwiseOptions) -> Result
 
 /// [`pointwise_curvature`] in the mesh's own unit.
 fn estimate(mesh: &TriMesh, options: &PointwiseOptions) -> Result<PointwiseCurvature> {
+    // Every branch below asks for the connectivity: built here once, not
+    // by each branch that finds it missing (`par::init_once`).
+    mesh.connectivity();
     let (tensor, (k, (radius, zero_area))) = par::join(
         || curvature_tensor(mesh, &options.tensor),
         || {

@@ -4,7 +4,9 @@
 //! angles, normals, lumped masses, cotangents, Laplacians, gradient or
 //! divergence gets the same values, computed once. Moving vertices
 //! ([`TriMesh::positions_mut`], [`TriMesh::set_positions`]) empties the
-//! cache; [`TriMesh::forget_geometry`] frees it.
+//! cache; [`TriMesh::forget_geometry`] frees it. A quantity is computed
+//! outside its cell ([`crate::par::init_once`]), so a mesh shared by
+//! parallel tasks never waits for itself.
 //!
 //! ```
 //! use mesh_kernel::{operators::MassKind, shapes};
@@ -28,6 +30,7 @@ use crate::error::Result;
 use crate::geometry::{self, Aabb, NormalWeighting};
 use crate::mesh::TriMesh;
 use crate::operators::{self, IntrinsicOptions, IntrinsicTriangulation, LaplacianKind, MassKind};
+use crate::par::init_once;
 
 /// The stored quantities; empty until asked for.
 #[derive(Clone, Default)]
@@ -67,42 +70,43 @@ impl<'a> Geometry<'a> {
     /// one thread each time, a tenth of the area-weighted normals
     /// (2026-12-06).
     pub fn bounding_box(&self) -> Option<Aabb> {
-        *self.cache.bounding_box.get_or_init(|| geometry::bounding_box(self.mesh))
+        *init_once(&self.cache.bounding_box, || geometry::bounding_box(self.mesh))
     }
 
     /// Area of every face ([`geometry::face_areas`]).
     pub fn face_areas(&self) -> &'a [f64] {
-        self.cache.face_areas.get_or_init(|| geometry::face_areas(self.mesh))
+        init_once(&self.cache.face_areas, || geometry::face_areas(self.mesh)).as_slice()
     }
 
     /// Unit normal of every face, zero on zero-area faces ([`geometry::face_normals`]).
     pub fn face_normals(&self) -> &'a [DVec3] {
-        self.cache.face_normals.get_or_init(|| geometry::face_normals(self.mesh))
+        init_once(&self.cache.face_normals, || geometry::face_normals(self.mesh)).as_slice()
     }
 
     /// The three corner angles of every face, summing to pi ([`geometry::corner_angles`]).
     pub fn corner_angles(&self) -> &'a [[f64; 3]] {
-        self.cache.corner_angles.get_or_init(|| geometry::corner_angles(self.mesh))
+        init_once(&self.cache.corner_angles, || geometry::corner_angles(self.mesh)).as_slice()
     }
 
     /// Unit vertex normals with the given weighting ([`geometry::vertex_normals`]).
     pub fn vertex_normals(&self, weighting: NormalWeighting) -> &'a [DVec3] {
-        self.cache.vertex_normals[weighting as usize].get_or_init(|| geometry::vertex_normals(self.mesh, weighting))
+        init_once(&self.cache.vertex_normals[weighting as usize], || geometry::vertex_normals(self.mesh, weighting))
+            .as_slice()
     }
 
     /// Lumped vertex areas of the given kind ([`operators::lumped_mass`]).
     pub fn lumped_mass(&self, kind: MassKind) -> &'a [f64] {
-        self.cache.lumped_mass[kind as usize].get_or_init(|| operators::lumped_mass(self.mesh, kind))
+        init_once(&self.cache.lumped_mass[kind as usize], || operators::lumped_mass(self.mesh, kind)).as_slice()
     }
 
     /// The cotangent opposite every half-edge `3 f + k` ([`operators::halfedge_cotans`]).
     pub fn halfedge_cotans(&self) -> &'a [f64] {
-        self.cache.halfedge_cotans.get_or_init(|| operators::halfedge_cotans(self.mesh))
+        init_once(&self.cache.halfedge_cotans, || operators::halfedge_cotans(self.mesh)).as_slice()
     }
 
     /// The mesh's cotangent Laplacian ([`operators::cotan_laplacian`]).
     pub fn cotan_laplacian(&self) -> &'a CsMat<f64> {
-        self.cache.cotan_laplacian.get_or_init(|| operators::cotan_laplacian(self.mesh))
+        init_once(&self.cache.cotan_laplacian, || operators::cotan_laplacian(self.mesh))
     }
 
     /// The intrinsic Delaunay triangulation with [`IntrinsicOptions::default`]
@@ -111,10 +115,9 @@ impl<'a> Geometry<'a> {
     /// # Errors
     /// Those of [`IntrinsicTriangulation::delaunay`] (kept: asking again gives the same error).
     pub fn intrinsic_delaunay(&self) -> Result<&'a IntrinsicTriangulation> {
-        let stored = self
-            .cache
-            .intrinsic
-            .get_or_init(|| IntrinsicTriangulation::delaunay(self.mesh, &IntrinsicOptions::default()));
+        let stored = init_once(&self.cache.intrinsic, || {
+            IntrinsicTriangulation::delaunay(self.mesh, &IntrinsicOptions::default())
+        });
         stored.as_ref().map_err(Clone::clone)
     }
 
@@ -129,19 +132,19 @@ impl<'a> Geometry<'a> {
             LaplacianKind::Cotan => Ok(self.cotan_laplacian()),
             _ => {
                 let t = self.intrinsic_delaunay()?;
-                Ok(self.cache.intrinsic_laplacian.get_or_init(|| t.cotan_laplacian()))
+                Ok(init_once(&self.cache.intrinsic_laplacian, || t.cotan_laplacian()))
             }
         }
     }
 
     /// The face-wise gradient of piecewise-linear functions ([`operators::gradient()`]).
     pub fn gradient(&self) -> &'a CsMat<f64> {
-        self.cache.gradient.get_or_init(|| operators::gradient(self.mesh))
+        init_once(&self.cache.gradient, || operators::gradient(self.mesh))
     }
 
     /// The integrated divergence of face-wise vector fields ([`operators::divergence`]).
     pub fn divergence(&self) -> &'a CsMat<f64> {
-        self.cache.divergence.get_or_init(|| operators::divergence(self.mesh))
+        init_once(&self.cache.divergence, || operators::divergence(self.mesh))
     }
 }
 
@@ -177,5 +180,37 @@ mod tests {
         }
         let copy = m.clone();
         assert_eq!(copy.geometry().face_areas(), m.geometry().face_areas());
+    }
+
+    /// Tasks on eight threads asking one cold mesh for its connectivity and
+    /// normals (each after parallel work of its own, the pattern that hung
+    /// `OnceLock::get_or_init`) all get the one stored value, equal to a
+    /// computation on one thread.
+    #[cfg(feature = "rayon")]
+    #[test]
+    fn parallel_first_requests_share_one_stored_value() {
+        use crate::geometry::NormalWeighting;
+        use rayon::prelude::*;
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(8).build().unwrap();
+        let sphere = shapes::icosphere(5).unwrap();
+        let expected = crate::geometry::vertex_normals(&sphere, NormalWeighting::Area);
+        for _ in 0..4 {
+            let mesh = crate::TriMesh::new(sphere.positions().to_vec(), sphere.faces().to_vec()).unwrap();
+            let seen: Vec<(usize, usize)> = pool.install(|| {
+                (0..64u32)
+                    .into_par_iter()
+                    .map(|i| {
+                        let busy: u64 = (0..20_000u32).into_par_iter().map(|x| u64::from(x ^ i)).sum();
+                        std::hint::black_box(busy);
+                        let conn = mesh.connectivity() as *const _ as usize;
+                        (conn, mesh.geometry().vertex_normals(NormalWeighting::Area).as_ptr() as usize)
+                    })
+                    .collect()
+            });
+            let stored =
+                (mesh.connectivity() as *const _ as usize, mesh.geometry().vertex_normals(NormalWeighting::Area));
+            assert!(seen.iter().all(|&(c, n)| c == stored.0 && n == stored.1.as_ptr() as usize));
+            assert_eq!(stored.1, &expected[..]);
+        }
     }
 }

@@ -226,7 +226,7 @@ impl TriMesh {
     /// Connectivity (edges, half-edges, vertex rings, manifold report), built on
     /// first call in O(V + F) and cached.
     pub fn connectivity(&self) -> &Connectivity {
-        self.connectivity.get_or_init(|| Connectivity::new(self.positions.len(), &self.faces))
+        crate::par::init_once(&self.connectivity, || Connectivity::new(self.positions.len(), &self.faces))
     }
 
     /// The connectivity, or [`MeshError::NonManifold`] with every defect when the

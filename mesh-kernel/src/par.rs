@@ -8,6 +8,7 @@
 //! count.
 
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
+use std::sync::OnceLock;
 
 /// Items from which a map runs in parallel: below it, one loop is faster
 /// than handing out tasks (per-face loops of ~10 ns per item).
@@ -697,6 +698,31 @@ pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> 
     (a(), b())
 }
 
+/// The value of `cell`, made by `make` on the first request: what
+/// `cell.get_or_init(make)` gives, without running `make` inside the cell's
+/// initialization. Every cached quantity of a mesh goes through it.
+///
+/// `OnceLock::get_or_init` holds the cell while `make` runs; a thread that
+/// asks for the cell then waits. When `make` runs parallel maps, the
+/// initializing thread, waiting for a task another thread took, runs other
+/// pending tasks (rayon's work stealing): if one of them asks for the same
+/// cell, that thread waits for itself, for ever. A shared mesh asked for
+/// its normals or connectivity from inside a parallel loop did so: 16
+/// rayon threads over 256 tasks, each asking an icosphere(7) for its
+/// connectivity or normals after a parallel sum of its own, hung within
+/// 120 repetitions (2026-12-07, `std::sync::OnceLock`'s futex wait in
+/// every thread). Here `make` runs outside the cell: requests that meet
+/// an empty cell each make the value (the first stored is kept, and every
+/// caller gets it), so concurrent first requests may repeat the work; none
+/// waits for another's `make`.
+pub fn init_once<T>(cell: &OnceLock<T>, make: impl FnOnce() -> T) -> &T {
+    if let Some(value) = cell.get() {
+        return value;
+    }
+    let value = make();
+    cell.get_or_init(|| value)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -911,5 +937,23 @@ mod tests {
                 assert!(data[offsets[i]..offsets[i + 1]].iter().all(|x| *x == i), "row {i}");
             }
         }
+    }
+
+    /// A request for a cell from inside the making of its own value (what
+    /// a thread does when, waiting inside `make` for a parallel task, it
+    /// runs a pending task that asks for the same quantity) gets a value
+    /// instead of waiting for itself, and both requests return the value
+    /// stored first. `OnceLock::get_or_init` waits for ever here, which
+    /// the timeout turns into a failure.
+    #[test]
+    fn a_cell_asked_for_while_its_value_is_made_does_not_wait_for_itself() {
+        let (sent, received) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let cell = OnceLock::new();
+            let outer = *init_once(&cell, || *init_once(&cell, || 1) + 1);
+            sent.send((outer, cell.get().copied())).ok();
+        });
+        let got = received.recv_timeout(std::time::Duration::from_secs(20));
+        assert_eq!(got, Ok((1, Some(1))));
     }
 }

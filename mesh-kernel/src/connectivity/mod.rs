@@ -286,7 +286,7 @@ impl Connectivity {
 
     /// Connected components through shared vertices (union-find, cached).
     pub fn components(&self) -> &Components {
-        self.components.get_or_init(|| {
+        crate::par::init_once(&self.components, || {
             let n = self.vertex_count();
             let mut sets = UnionFind::new(n);
             for f in self.corner_vertex.chunks_exact(3) {
@@ -319,7 +319,7 @@ impl Connectivity {
     /// [`MeshError::NonManifold`] on a non-manifold mesh (see [`Connectivity::require_manifold`]).
     pub fn boundary_loops(&self) -> Result<&[BoundaryLoop]> {
         self.require_manifold()?;
-        Ok(self.boundary_loops.get_or_init(|| {
+        Ok(crate::par::init_once(&self.boundary_loops, || {
             let nh = self.halfedge_count();
             let mut visited = vec![false; nh];
             let mut loops = Vec::new();
@@ -341,7 +341,8 @@ impl Connectivity {
                 loops.push(lp);
             }
             loops
-        }))
+        })
+        .as_slice())
     }
 
     /// Number of boundary loops, or `None` when the mesh is not manifold.
