@@ -150,26 +150,35 @@ impl Work {
     fn split(&mut self, graph: &Graph, points: &[DVec3], set: &mut [usize]) -> (usize, usize) {
         let axes = principal_axes(set.iter().map(|&v| points[v]));
         let search = if set.len() >= SEARCH_FROM { self.best_cut(graph, points, set, &axes) } else { None };
-        let (axis, mid) = search.unwrap_or((axes[0], set.len() / 2));
-        self.keyed.clear();
-        self.keyed.extend(set.iter().map(|&v| (points[v].dot(axis), v)));
-        self.keyed.select_nth_unstable_by(mid, |x, y| x.0.total_cmp(&y.0));
+        let mid = match search {
+            // The sides are the slabs on either side of the plane.
+            Some((a, boundary)) => {
+                self.scratch.clear();
+                self.scratch.extend(set.iter().copied().filter(|&v| self.slab[v][a] < boundary));
+                let mid = self.scratch.len();
+                self.scratch.extend(set.iter().copied().filter(|&v| self.slab[v][a] >= boundary));
+                set.copy_from_slice(&self.scratch);
+                mid
+            }
+            None => {
+                let mid = set.len() / 2;
+                self.keyed.clear();
+                self.keyed.extend(set.iter().map(|&v| (points[v].dot(axes[0]), v)));
+                self.keyed.select_nth_unstable_by(mid, |x, y| x.0.total_cmp(&y.0));
+                set.iter_mut().zip(&self.keyed).for_each(|(slot, &(_, v))| *slot = v);
+                mid
+            }
+        };
         self.finish(graph, set, mid)
     }
 
     /// The plane that cuts fewest edges for its balance: along each axis the
     /// set is cut into equal slabs, and each slab boundary leaving at least
     /// a share [`SMALLEST_SHARE`] on both sides is scored by its cut edges over
-    /// `4 f (1 - f)` (`f`: the share on one side). Returns the axis and the
-    /// number of unknowns below the best plane; `None` when the points do
-    /// not spread.
-    fn best_cut(
-        &mut self,
-        graph: &Graph,
-        points: &[DVec3],
-        set: &[usize],
-        axes: &[DVec3; 3],
-    ) -> Option<(DVec3, usize)> {
+    /// `4 f (1 - f)` (`f`: the share on one side). Returns the axis (its
+    /// index in `axes`) and the first slab above the best plane, the slabs
+    /// left in `self.slab`; `None` when the points do not spread.
+    fn best_cut(&mut self, graph: &Graph, points: &[DVec3], set: &[usize], axes: &[DVec3; 3]) -> Option<(usize, u16)> {
         let m = set.len();
         let bins = (m / 4).clamp(2, SLABS);
         let tag = self.next;
@@ -220,6 +229,7 @@ impl Work {
             }
         }
         let mut best: Option<(f64, usize, usize)> = None;
+        // (score, axis, first slab above)
         for a in (0..3).filter(|&a| scale[a] > 0.0) {
             let (mut cut, mut below) = (0i64, 0usize);
             for j in 1..bins {
@@ -229,23 +239,23 @@ impl Work {
                 if (SMALLEST_SHARE..=1.0 - SMALLEST_SHARE).contains(&f) {
                     let score = cut as f64 / (4.0 * f * (1.0 - f));
                     if best.is_none_or(|b| score < b.0) {
-                        best = Some((score, a, below));
+                        best = Some((score, a, j));
                     }
                 }
             }
         }
-        best.map(|(_, a, below)| (axes[a], below))
+        // `j < bins <= SLABS` fits the slabs' type.
+        best.map(|(_, a, j)| (a, j as u16))
     }
 
-    /// Puts the `mid` unknowns of `keyed` with the smallest keys on the
-    /// first side and the rest on the second, takes the separator, and lays
-    /// `set` out as `[first side | second side | separator]`; returns the
-    /// sizes of the two sides.
+    /// Takes the first `mid` unknowns of `set` as the first side and the
+    /// rest as the second, takes the separator, and lays `set` out as
+    /// `[first side | second side | separator]`; returns the sizes of the
+    /// two sides.
     fn finish(&mut self, graph: &Graph, set: &mut [usize], mid: usize) -> (usize, usize) {
         let (a, b, s) = (self.next, self.next + 1, self.next + 2);
         self.next += 3;
-        for (i, (slot, &(_, v))) in set.iter_mut().zip(&self.keyed).enumerate() {
-            *slot = v;
+        for (i, &v) in set.iter().enumerate() {
             self.label[v] = if i < mid { a } else { b };
         }
         // The separator: the vertices of the side with fewer of them that
@@ -256,18 +266,24 @@ impl Work {
         self.touching.extend(second.iter().map(|&v| graph.neighbors(v).any(|w| self.label[w] == a)));
         let touch_first = self.touching[..mid].iter().filter(|&&t| t).count();
         let touch_second = self.touching[mid..].iter().filter(|&&t| t).count();
-        let side = if touch_first <= touch_second { 0..mid } else { mid..set.len() };
+        let (side, sizes) = if touch_first <= touch_second {
+            (0..mid, [mid - touch_first, set.len() - mid])
+        } else {
+            (mid..set.len(), [mid, set.len() - mid - touch_second])
+        };
         for i in side {
             if self.touching[i] {
                 self.label[set[i]] = s;
             }
         }
+        // One pass places each unknown at the next place of its part.
+        let mut at = [0, sizes[0], sizes[0] + sizes[1]];
         self.scratch.clear();
-        let mut sizes = [0; 3];
-        for (size, wanted) in sizes.iter_mut().zip([a, b, s]) {
-            let before = self.scratch.len();
-            self.scratch.extend(set.iter().copied().filter(|&v| self.label[v] == wanted));
-            *size = self.scratch.len() - before;
+        self.scratch.resize(set.len(), 0);
+        for &v in set.iter() {
+            let part = self.label[v] - a;
+            self.scratch[at[part]] = v;
+            at[part] += 1;
         }
         set.copy_from_slice(&self.scratch);
         (sizes[0], sizes[1])
