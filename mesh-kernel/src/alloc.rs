@@ -9,11 +9,13 @@
 //! zeroes that page: measured at 0.40-0.66 ms per MB on a 2-core AMD EPYC
 //! VM, as long as building the half-edges of a 41k-vertex mesh takes.
 //! [`BlockCache`] maps every block of at least [`LARGE_BLOCK`] bytes itself
-//! and, when it is freed, keeps its pages (up to [`KEPT_LARGE`] bytes in
+//! and, when it is freed, keeps its pages (up to [`kept_limit`] bytes in
 //! all) for the next large allocation, which then costs no fault at all.
-//! Freed memory is kept only up to what the program had in use at once, so
-//! the cache never raises its peak memory; a process that wants the kept
-//! pages back can call [`release`].
+//! Freed memory is kept only up to what the program had in use at once: a
+//! block mapped afresh first gives kept ones back (smallest first) until
+//! kept and used blocks together fit in the most ever in use, so the cache
+//! never raises the peak memory of large blocks. A process that wants the
+//! kept pages back can call [`release`].
 //!
 //! Smaller blocks, and blocks aligned to more than 2 MiB, go to the system
 //! allocator. With glibc, its heap is told once (on the first allocation)
@@ -54,9 +56,38 @@ pub struct BlockCache;
 /// and kept when freed.
 pub const LARGE_BLOCK: usize = 4 << 20;
 
-/// Most bytes of freed large blocks kept for reuse (1 GiB); a freed block
-/// that does not fit makes the largest kept ones go back to the kernel.
-pub const KEPT_LARGE: usize = 1 << 30;
+/// Most bytes of freed large blocks kept for reuse (4 GiB), on a machine
+/// with at least four times as much physical memory (see [`kept_limit`]).
+///
+/// A repeated eigensolve of 20 pairs at 470k vertices allocates 1.2-1.5 GB
+/// of large blocks per call; with 1 GiB kept, 615 MB of them were mapped
+/// and faulted in afresh at every call (BENCHMARKS.md, "Keeping up to 4
+/// GiB of freed blocks").
+pub const KEPT_LARGE: usize = (1usize << 30).saturating_mul(4);
+
+/// Most bytes of freed large blocks kept for reuse: [`KEPT_LARGE`], or a
+/// quarter of the machine's physical memory when that is less (1 GiB when
+/// it cannot be read). A freed block that does not fit makes the largest
+/// kept ones go back to the kernel.
+pub fn kept_limit() -> usize {
+    #[cfg(target_os = "linux")]
+    {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        // 0: not read yet (reading twice is harmless).
+        static LIMIT: AtomicUsize = AtomicUsize::new(0);
+        let known = LIMIT.load(Ordering::Relaxed);
+        if known != 0 {
+            return known;
+        }
+        let limit = map::physical_memory().map_or(1 << 30, |bytes| (bytes / 4).min(KEPT_LARGE)).max(LARGE_BLOCK);
+        LIMIT.store(limit, Ordering::Relaxed);
+        limit
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        0
+    }
+}
 
 /// Bytes of freed heap that glibc keeps for reuse (its trim threshold) and
 /// adds to each growth of the heap (its top pad), once [`BlockCache`] has
@@ -69,7 +100,7 @@ pub const KEPT_FREE: usize = 64 << 20;
 const GRANULE: usize = 2 << 20;
 
 /// Most freed blocks kept at once.
-const SLOTS: usize = 32;
+const SLOTS: usize = 64;
 
 /// Whether [`BlockCache`] maps this block itself (the same answer for the
 /// allocation and the release of a block, which see the same layout).
@@ -170,6 +201,15 @@ mod map {
         }
     }
 
+    /// The machine's physical memory in bytes (`sysconf`, which does not
+    /// allocate); `None` when it cannot be read.
+    pub(super) fn physical_memory() -> Option<usize> {
+        // SAFETY: `sysconf` only reads system parameters.
+        let (pages, page) = unsafe { (libc::sysconf(libc::_SC_PHYS_PAGES), libc::sysconf(libc::_SC_PAGESIZE)) };
+        let (pages, page) = (usize::try_from(pages).ok()?, usize::try_from(page).ok()?);
+        pages.checked_mul(page).filter(|&b| b > 0)
+    }
+
     /// Returns `len` bytes at `ptr` (a part of a mapping made by [`map`]).
     ///
     /// # Safety
@@ -183,8 +223,13 @@ mod map {
 /// The freed large blocks kept for reuse.
 #[cfg(target_os = "linux")]
 mod kept {
-    use super::{map, KEPT_LARGE, SLOTS};
+    use super::{kept_limit, map, SLOTS};
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
     use std::sync::Mutex;
+
+    /// Bytes of mapped blocks in use, and the most ever in use at once.
+    static IN_USE: AtomicUsize = AtomicUsize::new(0);
+    static PEAK: AtomicUsize = AtomicUsize::new(0);
 
     /// Kept blocks as (address, mapped length); address 0 marks a free slot.
     struct Kept {
@@ -212,6 +257,44 @@ mod kept {
         fn largest(&self) -> Option<usize> {
             (0..SLOTS).filter(|&i| self.blocks[i].0 != 0).max_by_key(|&i| self.blocks[i].1)
         }
+
+        /// The slot of the smallest kept block.
+        fn smallest(&self) -> Option<usize> {
+            (0..SLOTS).filter(|&i| self.blocks[i].0 != 0).min_by_key(|&i| self.blocks[i].1)
+        }
+    }
+
+    /// Counts `bytes` more of mapped blocks in use and gives kept blocks
+    /// back, smallest first, until kept and used bytes together are at
+    /// most the most ever in use at once: keeping freed blocks never
+    /// raises the program's peak memory.
+    pub(super) fn grow(bytes: usize) {
+        let now = IN_USE.fetch_add(bytes, Relaxed).saturating_add(bytes);
+        let peak = PEAK.fetch_max(now, Relaxed).max(now);
+        let Ok(mut kept) = KEPT.try_lock() else { return };
+        while kept.bytes > peak - now {
+            let Some(i) = kept.smallest() else { break };
+            let (p, l) = kept.remove(i);
+            // SAFETY: a kept block is a whole unused mapping.
+            unsafe { map::unmap(p as *mut u8, l) };
+        }
+    }
+
+    /// Counts `bytes` fewer of mapped blocks in use.
+    pub(super) fn shrink(bytes: usize) {
+        // Every block counted in is counted out once with its length; the
+        // saturation only guards the arithmetic.
+        let _ = IN_USE.fetch_update(Relaxed, Relaxed, |u| Some(u.saturating_sub(bytes)));
+    }
+
+    /// `len` bytes freshly mapped (see [`map::map`]), counted in use.
+    pub(super) fn fresh(len: usize) -> *mut u8 {
+        grow(len);
+        let p = map::map(len);
+        if p.is_null() {
+            shrink(len);
+        }
+        p
     }
 
     /// The smallest kept block of at least `len` bytes at an address
@@ -229,20 +312,23 @@ mod kept {
             // SAFETY: the tail of a kept block is mapped and unused.
             unsafe { map::unmap(ptr.add(len), l - len) };
         }
+        grow(len);
         ptr
     }
 
     /// Keeps a freed block of `len` mapped bytes, making room by releasing
     /// the largest kept ones, or releases it when it is larger than
-    /// [`KEPT_LARGE`].
+    /// [`kept_limit`].
     ///
     /// # Safety
     /// `ptr..ptr + len` must be a whole mapping made by [`map::map`] (or
     /// grown by [`map::remap`]) and no longer used.
     pub(super) unsafe fn keep(ptr: *mut u8, len: usize) {
-        if len <= KEPT_LARGE {
+        shrink(len);
+        let limit = kept_limit();
+        if len <= limit {
             if let Ok(mut kept) = KEPT.try_lock() {
-                while kept.bytes + len > KEPT_LARGE || kept.blocks.iter().all(|b| b.0 != 0) {
+                while kept.bytes + len > limit || kept.blocks.iter().all(|b| b.0 != 0) {
                     let Some(i) = kept.largest() else { break };
                     let (p, l) = kept.remove(i);
                     map::unmap(p as *mut u8, l);
@@ -293,7 +379,7 @@ unsafe impl GlobalAlloc for BlockCache {
         if mapped(layout) {
             let len = mapped_len(layout.size());
             let reused = kept::take(len, layout.align());
-            return if reused.is_null() { map::map(len) } else { reused };
+            return if reused.is_null() { kept::fresh(len) } else { reused };
         }
         System.alloc(layout)
     }
@@ -306,7 +392,7 @@ unsafe impl GlobalAlloc for BlockCache {
             let reused = kept::take(len, layout.align());
             if reused.is_null() {
                 // Fresh anonymous pages are zero.
-                return map::map(len);
+                return kept::fresh(len);
             }
             std::ptr::write_bytes(reused, 0, layout.size());
             return reused;
@@ -333,13 +419,20 @@ unsafe impl GlobalAlloc for BlockCache {
                 let (old_len, new_len) = (mapped_len(layout.size()), mapped_len(new_size));
                 if new_len < old_len {
                     map::unmap(ptr.add(new_len), old_len - new_len);
+                    kept::shrink(old_len - new_len);
                 }
                 ptr
             }
             #[cfg(target_os = "linux")]
             (true, true) if layout.align() <= 4096 => {
                 // Growing: the kernel moves the pages, nothing is copied.
-                map::remap(ptr, mapped_len(layout.size()), mapped_len(new_size))
+                let (old_len, new_len) = (mapped_len(layout.size()), mapped_len(new_size));
+                kept::grow(new_len - old_len);
+                let new = map::remap(ptr, old_len, new_len);
+                if new.is_null() {
+                    kept::shrink(new_len - old_len);
+                }
+                new
             }
             _ => {
                 // Crossing the threshold (or growing a block aligned to more
@@ -366,6 +459,22 @@ mod tests {
     /// kept blocks are shared by the whole process.
     #[test]
     fn blocks_of_every_size_keep_their_contents_and_are_reused() {
+        if cfg!(target_os = "linux") {
+            // First, while the most in use is known: a larger block than
+            // any kept one is mapped afresh and gives the kept one back,
+            // since both would exceed the most ever in use.
+            let small = Layout::from_size_align(2 * LARGE_BLOCK, 8).unwrap();
+            let large = Layout::from_size_align(3 * LARGE_BLOCK, 8).unwrap();
+            // SAFETY: each block is released once with its own layout.
+            unsafe {
+                let p = BlockCache.alloc(small);
+                BlockCache.dealloc(p, small);
+                let q = BlockCache.alloc(large);
+                assert_eq!(release(), 0, "the kept block went back when the larger one was mapped");
+                BlockCache.dealloc(q, large);
+                assert_eq!(release(), mapped_len(large.size()));
+            }
+        }
         let sizes = [64, LARGE_BLOCK - 8, LARGE_BLOCK, LARGE_BLOCK + 3 * GRANULE + 24, 3 * LARGE_BLOCK];
         for &from in &sizes {
             for &to in &sizes {
@@ -432,7 +541,7 @@ mod tests {
             }
             // A block larger than the cache goes straight back (never
             // touched, so it commits no memory).
-            let huge = Layout::from_size_align(KEPT_LARGE + 1, 8).unwrap();
+            let huge = Layout::from_size_align(kept_limit() + 1, 8).unwrap();
             // SAFETY: allocated and released with the same layout.
             unsafe {
                 let p = BlockCache.alloc(huge);
@@ -440,6 +549,30 @@ mod tests {
                 BlockCache.dealloc(p, huge);
             }
             assert_eq!(release(), 0);
+            // Freed blocks beyond the former 1 GiB are kept, up to the
+            // limit: of six blocks of about a quarter of it (never touched,
+            // so they commit no memory), four freed come back as the same
+            // blocks (best fit).
+            let limit = kept_limit();
+            assert!((LARGE_BLOCK..=KEPT_LARGE).contains(&limit));
+            let sizes: Vec<usize> = (0..6).map(|i| (limit / 4 - i * GRANULE).max(LARGE_BLOCK)).collect();
+            let layouts: Vec<Layout> = sizes.iter().map(|&s| Layout::from_size_align(s, 8).unwrap()).collect();
+            // SAFETY: every block is released once, with its own layout.
+            unsafe {
+                let first: Vec<*mut u8> = layouts.iter().map(|&l| BlockCache.alloc(l)).collect();
+                for (&p, &l) in first.iter().zip(&layouts).take(4) {
+                    BlockCache.dealloc(p, l);
+                }
+                for (&p, &l) in first.iter().zip(&layouts).take(4) {
+                    assert_eq!(BlockCache.alloc(l), p, "a kept block of {} bytes", l.size());
+                }
+                for (&p, &l) in first.iter().zip(&layouts) {
+                    BlockCache.dealloc(p, l);
+                }
+            }
+            // Six quarters do not fit: the largest went back.
+            let released = release();
+            assert!(released <= limit && released >= limit / 2, "{released} of {limit}");
         }
     }
 }
