@@ -67,8 +67,9 @@ pub const KEPT_LARGE: usize = (1usize << 30).saturating_mul(4);
 
 /// Most bytes of freed large blocks kept for reuse: [`KEPT_LARGE`], or a
 /// quarter of the machine's physical memory when that is less (1 GiB when
-/// it cannot be read). A freed block that does not fit makes the largest
-/// kept ones go back to the kernel.
+/// it cannot be read); 0 off Linux, where [`BlockCache`] keeps nothing. A
+/// freed block that does not fit makes the largest kept ones go back to
+/// the kernel.
 pub fn kept_limit() -> usize {
     #[cfg(target_os = "linux")]
     {
