@@ -228,8 +228,8 @@ impl Work {
                 }
             }
         }
+        // The best (score, axis, first slab above) so far.
         let mut best: Option<(f64, usize, usize)> = None;
-        // (score, axis, first slab above)
         for a in (0..3).filter(|&a| scale[a] > 0.0) {
             let (mut cut, mut below) = (0i64, 0usize);
             for j in 1..bins {
