@@ -38,6 +38,7 @@ use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
 
+use super::narrow::dot;
 use super::tall;
 use crate::error::{Result, SpectralError};
 use mesh_kernel::random::SplitMix64;
@@ -683,20 +684,6 @@ fn against_basis(prev: MatRef<'_, f64>, col: &mut [f64]) {
     let mut c = Mat::zeros(prev.ncols(), 1);
     tall::gram(c.as_mut(), prev, MatRef::from_column_major_slice(col, n, 1));
     tall::mul(MatMut::from_column_major_slice_mut(col, n, 1), Accum::Add, prev, c.as_ref(), -1.0);
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    // Four accumulators: vectorizes and is less sensitive to cancellation.
-    let mut acc = [0.0; 4];
-    let (ca, ra) = a.split_at(a.len() / 4 * 4);
-    let (cb, rb) = b.split_at(ca.len());
-    for (x, y) in ca.chunks_exact(4).zip(cb.chunks_exact(4)) {
-        for k in 0..4 {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    acc[0] + acc[1] + acc[2] + acc[3] + tail
 }
 
 /// The column norms of a block from its Gram matrix (square roots of the

@@ -41,6 +41,7 @@ mod component;
 mod dense;
 mod krylov;
 mod merge;
+mod narrow;
 mod problem;
 mod quality;
 mod shift_invert;

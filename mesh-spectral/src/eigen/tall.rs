@@ -20,6 +20,8 @@ use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
+use super::narrow;
+
 /// Below this many multiply-adds a product stays on one thread.
 const PARALLEL_WORK: usize = 1 << 20;
 
@@ -54,6 +56,9 @@ fn chunk_rows(width: usize) -> usize {
 
 /// `out = a^T b` on one thread, by chunks of rows.
 fn gram_seq(mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>) {
+    if narrow::gram(out.rb_mut(), a, b) {
+        return;
+    }
     let (n, chunk) = (a.nrows(), chunk_rows(a.ncols()));
     out.fill(0.0);
     for r0 in (0..n).step_by(chunk) {
@@ -64,6 +69,9 @@ fn gram_seq(mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>) {
 
 /// `out (+)= alpha a c` on one thread, by chunks of rows.
 fn mul_seq(mut out: MatMut<'_, f64>, accum: Accum, a: MatRef<'_, f64>, c: MatRef<'_, f64>, alpha: f64) {
+    if narrow::mul(out.rb_mut(), matches!(accum, Accum::Add), a, c, alpha, None) {
+        return;
+    }
     let (n, chunk) = (a.nrows(), chunk_rows(a.ncols()));
     for r0 in (0..n).step_by(chunk) {
         let len = chunk.min(n - r0);
@@ -162,6 +170,9 @@ pub(crate) fn mul_gram(
     let (n, m) = (a.nrows(), c.ncols());
     let parts = slabs(n, n * a.ncols() * m);
     let slab = |mut out: MatMut<'_, f64>, a: MatRef<'_, f64>, mut share: MatMut<'_, f64>| {
+        if narrow::mul(out.rb_mut(), matches!(accum, Accum::Add), a, c, alpha, Some(share.rb_mut())) {
+            return;
+        }
         let chunk = chunk_rows(a.ncols());
         share.fill(0.0);
         for r0 in (0..a.nrows()).step_by(chunk) {
