@@ -150,35 +150,27 @@ impl Work {
     fn split(&mut self, graph: &Graph, points: &[DVec3], set: &mut [usize]) -> (usize, usize) {
         let axes = principal_axes(set.iter().map(|&v| points[v]));
         let search = if set.len() >= SEARCH_FROM { self.best_cut(graph, points, set, &axes) } else { None };
-        let mid = match search {
+        match search {
             // The sides are the slabs on either side of the plane.
-            Some((a, boundary)) => {
-                self.scratch.clear();
-                self.scratch.extend(set.iter().copied().filter(|&v| self.slab[v][a] < boundary));
-                let mid = self.scratch.len();
-                self.scratch.extend(set.iter().copied().filter(|&v| self.slab[v][a] >= boundary));
-                set.copy_from_slice(&self.scratch);
-                mid
-            }
+            Some(cut) => self.finish_cut(graph, set, cut),
             None => {
                 let mid = set.len() / 2;
                 self.keyed.clear();
                 self.keyed.extend(set.iter().map(|&v| (points[v].dot(axes[0]), v)));
                 self.keyed.select_nth_unstable_by(mid, |x, y| x.0.total_cmp(&y.0));
                 set.iter_mut().zip(&self.keyed).for_each(|(slot, &(_, v))| *slot = v);
-                mid
+                self.finish(graph, set, mid)
             }
-        };
-        self.finish(graph, set, mid)
+        }
     }
 
     /// The plane that cuts fewest edges for its balance: along each axis the
     /// set is cut into equal slabs, and each slab boundary leaving at least
     /// a share [`SMALLEST_SHARE`] on both sides is scored by its cut edges over
-    /// `4 f (1 - f)` (`f`: the share on one side). Returns the axis (its
-    /// index in `axes`) and the first slab above the best plane, the slabs
-    /// left in `self.slab`; `None` when the points do not spread.
-    fn best_cut(&mut self, graph: &Graph, points: &[DVec3], set: &[usize], axes: &[DVec3; 3]) -> Option<(usize, u16)> {
+    /// `4 f (1 - f)` (`f`: the share on one side). Returns the cut, the
+    /// slabs left in `self.slab` and the set's unknowns labelled with
+    /// [`Cut::tag`]; `None` when the points do not spread.
+    fn best_cut(&mut self, graph: &Graph, points: &[DVec3], set: &[usize], axes: &[DVec3; 3]) -> Option<Cut> {
         let m = set.len();
         let bins = (m / 4).clamp(2, SLABS);
         let tag = self.next;
@@ -213,6 +205,8 @@ impl Work {
                 self.counts[a][b] += 1;
             }
         }
+        // The most slabs an edge spans, per axis.
+        let mut span = [0u16; 3];
         for &u in set {
             let su = self.slab[u];
             for w in graph.later_neighbors(u) {
@@ -225,6 +219,7 @@ impl Work {
                     let (first, last) = if su[a] <= sw[a] { (su[a], sw[a]) } else { (sw[a], su[a]) };
                     self.cuts[a][first as usize + 1] += 1;
                     self.cuts[a][last as usize + 1] -= 1;
+                    span[a] = span[a].max(last - first);
                 }
             }
         }
@@ -245,7 +240,46 @@ impl Work {
             }
         }
         // `j < bins <= SLABS` fits the slabs' type.
-        best.map(|(_, a, j)| (a, j as u16))
+        best.map(|(_, axis, j)| Cut { axis, boundary: j as u16, span: span[axis], tag })
+    }
+
+    /// Splits `set` by a searched cut: the first side is the slabs below
+    /// the boundary, the second the slabs above, and the separator the
+    /// unknowns of the side with fewer of them that have a neighbour on the
+    /// other side. Only unknowns within [`Cut::span`] slabs of the
+    /// boundary can have one, so only their neighbours are read. Lays
+    /// `set` out as `[first side | second side | separator]`; returns the
+    /// sizes of the two sides.
+    fn finish_cut(&mut self, graph: &Graph, set: &mut [usize], cut: Cut) -> (usize, usize) {
+        let Cut { axis, boundary, span, tag } = cut;
+        let near = boundary.saturating_sub(span)..boundary.saturating_add(span);
+        let mut counts = [0usize; 2];
+        let mut touching = [0usize; 2];
+        self.touching.clear();
+        for &v in set.iter() {
+            let slab = self.slab[v][axis];
+            let below = slab < boundary;
+            counts[usize::from(!below)] += 1;
+            let touches = near.contains(&slab)
+                && graph.neighbors(v).any(|w| self.label[w] == tag && (self.slab[w][axis] < boundary) != below);
+            touching[usize::from(!below)] += usize::from(touches);
+            self.touching.push(touches);
+        }
+        // The separator is taken from the side with fewer touching unknowns.
+        let from = usize::from(touching[1] < touching[0]);
+        let mut sizes = counts;
+        sizes[from] -= touching[from];
+        let mut at = [0, sizes[0], sizes[0] + sizes[1]];
+        self.scratch.clear();
+        self.scratch.resize(set.len(), 0);
+        for (&v, &touches) in set.iter().zip(&self.touching) {
+            let side = usize::from(self.slab[v][axis] >= boundary);
+            let part = if touches && side == from { 2 } else { side };
+            self.scratch[at[part]] = v;
+            at[part] += 1;
+        }
+        set.copy_from_slice(&self.scratch);
+        (sizes[0], sizes[1])
     }
 
     /// Takes the first `mid` unknowns of `set` as the first side and the
@@ -288,6 +322,19 @@ impl Work {
         set.copy_from_slice(&self.scratch);
         (sizes[0], sizes[1])
     }
+}
+
+/// A plane found by [`Work::best_cut`].
+#[derive(Clone, Copy)]
+struct Cut {
+    /// Index of the axis in the set's principal axes.
+    axis: usize,
+    /// The first slab above the plane.
+    boundary: u16,
+    /// The most slabs any edge inside the set spans along the axis.
+    span: u16,
+    /// The label of the set's unknowns.
+    tag: usize,
 }
 
 /// Sets of at most this many unknowns are not split further (their order
