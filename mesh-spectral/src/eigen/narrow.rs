@@ -33,6 +33,9 @@ fn columns<'a>(a: MatRef<'a, f64>) -> Option<Vec<&'a [f64]>> {
 /// `out = a^T b` (a: n x k, b: n x m, out: k x m) when `b` is narrow and
 /// both have contiguous columns; `false` (and `out` untouched) otherwise.
 pub(crate) fn gram(out: MatMut<'_, f64>, a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> bool {
+    if b.ncols() > WIDEST {
+        return false;
+    }
     let (Some(a_cols), Some(b_cols)) = (columns(a), columns(b)) else { return false };
     macro_rules! by_width {
         ($($m:literal => $l:literal, $g:literal);*) => {
@@ -58,10 +61,10 @@ pub(crate) fn mul(
     alpha: f64,
     gram: Option<MatMut<'_, f64>>,
 ) -> bool {
-    let Some(a_cols) = columns(a) else { return false };
     if out.ncols() > WIDEST || (0..out.ncols()).any(|j| out.rb().col(j).try_as_col_major().is_none()) {
         return false;
     }
+    let Some(a_cols) = columns(a) else { return false };
     macro_rules! by_width {
         ($($m:literal => $g:literal),*) => {
             match out.ncols() {
