@@ -179,13 +179,13 @@ fn gather<T: Clone>(values: &[T], index: &[u32], what: &str) -> Result<Vec<T>> {
 /// The points' indices along a Hilbert curve through their bounding box
 /// (ties keep the input order). Cost O(n log n).
 pub(crate) fn hilbert_order(p: &[DVec3]) -> Vec<u32> {
-    let keys: Vec<u64> = match Aabb::of(p) {
-        Some(b) => p.iter().map(|&x| hilbert_key(grid_cell(x, &b))).collect(),
-        None => Vec::new(),
-    };
-    let mut order: Vec<u32> = (0..p.len() as u32).collect();
-    order.sort_unstable_by_key(|&v| (keys[v as usize], v));
-    order
+    let Some(b) = Aabb::of(p) else { return (0..p.len() as u32).collect() };
+    // The keys beside their points, so that the sort moves contiguous
+    // pairs instead of reading a key array at random.
+    let mut keyed: Vec<(u64, u32)> =
+        p.iter().enumerate().map(|(v, &x)| (hilbert_key(grid_cell(x, &b)), v as u32)).collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, v)| v).collect()
 }
 
 /// The cell of `x` on the grid of 2^BITS cells per axis over `b`; a flat
@@ -206,42 +206,41 @@ fn grid_cell(x: DVec3, b: &Aabb) -> [u32; 3] {
 /// Skilling's transform of the coordinates into the "transposed" Hilbert
 /// index, whose bits, interleaved from the most significant, are the index.
 fn hilbert_key(mut x: [u32; 3]) -> u64 {
-    // Undo the excess work of the Gray code, level by level.
-    let mut q = 1u32 << (BITS - 1);
-    while q > 1 {
-        let p = q - 1;
+    // Without branches: a coordinate's bits are as good as random, and a
+    // branch on each was mispredicted half the time.
+    let ones = |x: u32, level: u32| 0u32.wrapping_sub((x >> level) & 1);
+    // Undo the excess work of the Gray code, level by level: where bit
+    // `level` of x[i] is set, invert the lower bits of x[0], else exchange
+    // them with x[i]'s (for i = 0 the exchange does nothing).
+    for level in (1..BITS).rev() {
+        let p = (1u32 << level) - 1;
         for i in 0..3 {
-            if x[i] & q != 0 {
-                x[0] ^= p;
-            } else {
-                let t = (x[0] ^ x[i]) & p;
-                x[0] ^= t;
-                x[i] ^= t;
-            }
+            let set = ones(x[i], level);
+            let t = (x[0] ^ x[i]) & p & !set;
+            x[0] ^= (p & set) | t;
+            x[i] ^= t;
         }
-        q >>= 1;
     }
     // Gray encode.
     x[1] ^= x[0];
     x[2] ^= x[1];
     let mut t = 0;
-    let mut q = 1u32 << (BITS - 1);
-    while q > 1 {
-        if x[2] & q != 0 {
-            t ^= q - 1;
-        }
-        q >>= 1;
+    for level in (1..BITS).rev() {
+        t ^= ((1u32 << level) - 1) & ones(x[2], level);
     }
-    for c in &mut x {
-        *c ^= t;
-    }
-    let mut key = 0u64;
-    for bit in (0..BITS).rev() {
-        for c in x {
-            key = (key << 1) | u64::from((c >> bit) & 1);
-        }
-    }
-    key
+    let [a, b, c] = x.map(|c| spread(c ^ t));
+    (a << 2) | (b << 1) | c
+}
+
+/// The low [`BITS`] bits of `v` moved to every third bit (bit `i` to bit
+/// `3 i`), so that three coordinates interleave by shifts and ors.
+fn spread(v: u32) -> u64 {
+    let mut x = u64::from(v) & ((1 << BITS) - 1);
+    x = (x | x << 32) & 0x001f_0000_0000_ffff;
+    x = (x | x << 16) & 0x001f_0000_ff00_00ff;
+    x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+    x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+    (x | x << 2) & 0x1249_2492_4924_9249
 }
 
 #[cfg(test)]
