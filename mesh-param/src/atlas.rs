@@ -238,6 +238,26 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
             reason: format!("need a finite value >= 1, got {limit}"),
         });
     }
+    // Charts are sized against each other by their areas, which over- or
+    // underflow on a mesh far from unit size: they are made on the mesh in
+    // its unit of length (a power of two, so the UVs are those of any
+    // scale), and take their 3D parts from the input.
+    let (work, unit) = mesh_kernel::units::normalized(mesh);
+    let mut atlas = atlas_in_unit(&work, options)?;
+    if unit != 1.0 {
+        for chart in &mut atlas.charts {
+            let positions = chart.vertices.iter().map(|&v| mesh.position(v)).collect();
+            chart.mesh = TriMesh::new(positions, chart.mesh.faces().to_vec())?;
+            chart.surface_area = geometry::surface_area(&chart.mesh);
+        }
+        atlas.scale /= unit;
+    }
+    Ok(atlas)
+}
+
+/// [`atlas`] of a mesh whose areas do not over- or underflow (checked
+/// options).
+fn atlas_in_unit(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
     let conn = mesh.manifold_connectivity()?;
     let (labels, count) = chart_labels(mesh, options.max_chart_faces)?;
     let pieces = chart_pieces(mesh, &labels, count)?;
@@ -539,6 +559,32 @@ mod tests {
         }
         let d = distortion(&chart, &uv).unwrap().summary;
         assert!(d.bijective && (d.angle_distortion_max - 1.0).abs() < 1e-9);
+    }
+
+    /// 2^1000 and 2^-1000 times the mesh: the same charts and UVs, the
+    /// input's own positions in the charts, the scale divided by the
+    /// factor (the areas of such meshes over- and underflow).
+    #[test]
+    fn the_atlas_does_not_depend_on_the_unit_of_length() {
+        let mesh = side_by_side(&[shapes::torus(2.0, 0.5, 24, 12).unwrap(), shapes::icosphere(2).unwrap()]);
+        let plain = atlas(&mesh, &AtlasOptions::default()).unwrap();
+        for factor in [2f64.powi(1000), 2f64.powi(-1000)] {
+            let p: Vec<DVec3> = mesh.positions().iter().map(|q| *q * factor).collect();
+            let scaled = TriMesh::new(p, mesh.faces().to_vec()).unwrap();
+            let a = atlas(&scaled, &AtlasOptions::default()).unwrap();
+            assert_eq!(a.charts.len(), plain.charts.len());
+            assert_eq!(a.face_chart, plain.face_chart);
+            for (q, r) in a.corner_uvs.iter().flatten().zip(plain.corner_uvs.iter().flatten()) {
+                assert!((*q - *r).length() < 1e-12, "{q} vs {r} at {factor:e}");
+            }
+            assert!((a.scale * factor / plain.scale - 1.0).abs() < 1e-12);
+            for c in &a.charts {
+                let expected: Vec<DVec3> = c.vertices.iter().map(|&v| scaled.position(v)).collect();
+                assert_eq!(c.mesh.positions(), expected.as_slice());
+                assert!(c.surface_area.is_finite() || factor > 1.0);
+                assert!(c.surface_area > 0.0 || factor < 1.0);
+            }
+        }
     }
 
     #[test]
