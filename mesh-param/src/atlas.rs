@@ -249,10 +249,21 @@ pub fn atlas(mesh: &TriMesh, options: &AtlasOptions) -> Result<Atlas> {
             let positions = chart.vertices.iter().map(|&v| mesh.position(v)).collect();
             chart.mesh = TriMesh::new(positions, chart.mesh.faces().to_vec())?;
             chart.surface_area = geometry::surface_area(&chart.mesh);
+            areas_in_input_units(&mut chart.distortion, unit);
         }
+        areas_in_input_units(&mut atlas.summary.distortion, unit);
         atlas.scale /= unit;
     }
     Ok(atlas)
+}
+
+/// The areas of a summary measured on the mesh in units of `unit` (a
+/// power of two), in the input's units: infinite or zero where they do not
+/// fit a double. Its other measures are ratios.
+fn areas_in_input_units(summary: &mut DistortionSummary, unit: f64) {
+    // Times the unit twice: its square may overflow where the product does not.
+    summary.surface_area = summary.surface_area * unit * unit;
+    summary.dirichlet_energy = summary.dirichlet_energy * unit * unit;
 }
 
 /// [`atlas`] of a mesh whose areas do not over- or underflow (checked
@@ -568,7 +579,7 @@ mod tests {
     fn the_atlas_does_not_depend_on_the_unit_of_length() {
         let mesh = side_by_side(&[shapes::torus(2.0, 0.5, 24, 12).unwrap(), shapes::icosphere(2).unwrap()]);
         let plain = atlas(&mesh, &AtlasOptions::default()).unwrap();
-        for factor in [2f64.powi(1000), 2f64.powi(-1000)] {
+        for factor in [2f64.powi(1000), 2f64.powi(-1000), 2f64.powi(200), 2f64.powi(-200)] {
             let p: Vec<DVec3> = mesh.positions().iter().map(|q| *q * factor).collect();
             let scaled = TriMesh::new(p, mesh.faces().to_vec()).unwrap();
             let a = atlas(&scaled, &AtlasOptions::default()).unwrap();
@@ -583,6 +594,16 @@ mod tests {
                 assert_eq!(c.mesh.positions(), expected.as_slice());
                 assert!(c.surface_area.is_finite() || factor > 1.0);
                 assert!(c.surface_area > 0.0 || factor < 1.0);
+            }
+            // Where the areas fit a double, they are the input's.
+            let squared = factor * factor;
+            if squared.is_normal() {
+                let pairs = a.charts.iter().zip(&plain.charts).map(|(c, d)| (&c.distortion, &d.distortion));
+                for (d, e) in pairs.chain([(&a.summary.distortion, &plain.summary.distortion)]) {
+                    assert!((d.surface_area / (e.surface_area * squared) - 1.0).abs() < 1e-12);
+                    assert!((d.dirichlet_energy / (e.dirichlet_energy * squared) - 1.0).abs() < 1e-12);
+                    assert_eq!(d.area_distortion_max, e.area_distortion_max);
+                }
             }
         }
     }
