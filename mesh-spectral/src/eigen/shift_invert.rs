@@ -270,7 +270,15 @@ impl ShiftInvert {
 
 /// `L - shift M` of a component.
 fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
-    &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect())
+    let a = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
+    // Symmetric (`problem::split` checks L): its transpose, the same
+    // arrays read as compressed columns, is itself, and the factorization
+    // takes compressed columns without converting.
+    if a.is_csr() {
+        a.transpose_into()
+    } else {
+        a
+    }
 }
 
 #[cfg(test)]
