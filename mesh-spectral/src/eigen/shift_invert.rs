@@ -271,9 +271,11 @@ impl ShiftInvert {
 /// `L - shift M` of a component.
 fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
     let a = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
-    // Symmetric (`problem::split` checks L): its transpose, the same
-    // arrays read as compressed columns, is itself, and the factorization
-    // takes compressed columns without converting.
+    // Symmetric (`problem::split` checks L, to 1e-10 of its largest
+    // entry): its transpose, the same arrays read as compressed columns,
+    // is itself to that tolerance, and the factorization takes compressed
+    // columns without converting. The factor and the inertia count both
+    // read it so, on the same pattern.
     if a.is_csr() {
         a.transpose_into()
     } else {
