@@ -101,8 +101,9 @@ impl ShiftInvert {
     /// How many eigenvalues of the component's pencil lie below `mu`: the
     /// negative eigenvalues of `L - mu M` (Sylvester's law of inertia,
     /// through this factor's analysis); `None` when the count cannot be
-    /// trusted ([`Cholesky::negative_eigenvalues`]) or `L - mu M` lost an
-    /// entry of the analysed pattern (a diagonal cancelled to zero).
+    /// trusted ([`Cholesky::negative_eigenvalues`]: a pivot near zero, as
+    /// where a diagonal entry cancels) or `L - mu M` lost an entry of the
+    /// analysed pattern.
     ///
     /// # Errors
     /// `SpectralError::Mesh` when the workspace cannot be allocated.
@@ -270,7 +271,24 @@ impl ShiftInvert {
 
 /// `L - shift M` of a component.
 fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
-    let a = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
+    // L's own pattern, with `shift * m` taken off its diagonal in place
+    // (sprs's difference of two matrices merged every row, twice a solve:
+    // 0.9% of a 20-pair solve at 40,962 vertices). A row without a
+    // diagonal entry gets one through that difference.
+    let mut a = c.laplacian.clone();
+    let has_diagonal = (0..a.rows()).all(|i| {
+        let row = a.indptr().outer_inds_sz(i);
+        match a.indices()[row.clone()].binary_search(&i) {
+            Ok(k) => {
+                a.data_mut()[row.start + k] -= shift * c.mass[i];
+                true
+            }
+            Err(_) => false,
+        }
+    });
+    if !has_diagonal {
+        a = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
+    }
     // Symmetric (`problem::split` checks L, to 1e-10 of its largest
     // entry): its transpose, the same arrays read as compressed columns,
     // is itself to that tolerance, and the factorization takes compressed
