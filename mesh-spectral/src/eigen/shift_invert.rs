@@ -276,29 +276,20 @@ fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
     // 0.9% of a 20-pair solve at 40,962 vertices). A row without a
     // diagonal entry gets one through that difference.
     let mut a = c.laplacian.clone();
-    let has_diagonal = (0..a.rows()).all(|i| {
+    for i in 0..a.rows() {
         let row = a.indptr().outer_inds_sz(i);
-        match a.indices()[row.clone()].binary_search(&i) {
-            Ok(k) => {
-                a.data_mut()[row.start + k] -= shift * c.mass[i];
-                true
-            }
-            Err(_) => false,
-        }
-    });
-    if !has_diagonal {
-        a = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
+        let Ok(k) = a.indices()[row.clone()].binary_search(&i) else {
+            a = &c.laplacian - &mesh_kernel::operators::mass::diagonal(c.mass.iter().map(|m| shift * m).collect());
+            break;
+        };
+        a.data_mut()[row.start + k] -= shift * c.mass[i];
     }
     // Symmetric (`problem::split` checks L, to 1e-10 of its largest
-    // entry): its transpose, the same arrays read as compressed columns,
+    // entry): its transpose, the same arrays in the other storage order,
     // is itself to that tolerance, and the factorization takes compressed
     // columns without converting. The factor and the inertia count both
     // read it so, on the same pattern.
-    if a.is_csr() {
-        a.transpose_into()
-    } else {
-        a
-    }
+    a.transpose_into()
 }
 
 #[cfg(test)]
