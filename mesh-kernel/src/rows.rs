@@ -1,6 +1,7 @@
 //! The rows of a compressed sparse layout (a vertex's ring of edges, say)
 //! filled in any order, each through its own cursor, without being zeroed
-//! first.
+//! first: [`RowFill`] for pushes that arrive row after row in any order,
+//! [`fill_rows`] for rows that are each written whole, in parallel.
 //!
 //! A scatter into a `vec![x; n]` writes every slot twice: once with `x`,
 //! once with its value. At 470,274 vertices, zeroing the 34 MB of rings of
@@ -121,9 +122,63 @@ impl<T: Copy> RowFill<T> {
     }
 }
 
+/// One row of [`fill_rows`], written from its first slot to its last.
+#[derive(Debug)]
+pub struct RowCursor<'a, T> {
+    slots: &'a mut [MaybeUninit<T>],
+    next: usize,
+}
+
+impl<T> RowCursor<'_, T> {
+    /// Writes the row's next slot.
+    ///
+    /// # Panics
+    /// If the row is already full (an index out of bounds).
+    #[inline]
+    pub fn push(&mut self, value: T) {
+        self.slots[self.next].write(value);
+        self.next += 1;
+    }
+}
+
+/// The values of rows `offsets[i]..offsets[i + 1]`, row `i` written whole
+/// by `f(i, cursor)` through [`RowCursor::push`], rows in parallel
+/// ([`crate::par::rows`]) and no slot written before. At 470,274 vertices
+/// the cotan Laplacian's 3.3 million entries had cost 0.75 ms more to zero
+/// first. O(rows) beside `f`.
+///
+/// ```
+/// use mesh_kernel::rows::fill_rows;
+///
+/// // Row i holds i, i + 1, ... for as many slots as it has.
+/// let values = fill_rows(&[0, 2, 2, 5], |i, row| (0..[2, 0, 3][i]).for_each(|k| row.push(i + k)));
+/// assert_eq!(values, vec![0, 1, 2, 3, 4]);
+/// ```
+///
+/// # Panics
+/// If `offsets` does not start at 0 or decreases, or if `f` pushes fewer or
+/// more values to a row than it has slots.
+pub fn fill_rows<T: Copy + Send>(offsets: &[usize], f: impl Fn(usize, &mut RowCursor<'_, T>) + Sync + Send) -> Vec<T> {
+    assert_eq!(offsets.first().copied().unwrap_or(0), 0, "the offsets of fill_rows start at 0");
+    let len = offsets.last().copied().unwrap_or(0);
+    let mut values = Vec::with_capacity(len);
+    crate::par::rows(&mut values.spare_capacity_mut()[..len], offsets, |i, slots| {
+        let mut row = RowCursor { slots, next: 0 };
+        f(i, &mut row);
+        assert!(row.next == row.slots.len(), "row {i} of fill_rows was not filled exactly");
+    });
+    // SAFETY: `par::rows` handed row `i` the slots `offsets[i]..offsets[i +
+    // 1]` (slicing panics where they are not in order), which tile `0..len`
+    // from the first offset, 0 (checked above), to the last; each row's
+    // cursor wrote its slots one by one from the first and ended at the
+    // last (checked above; a panic in a row propagates before this line).
+    unsafe { values.set_len(len) };
+    values
+}
+
 #[cfg(test)]
 mod tests {
-    use super::RowFill;
+    use super::{fill_rows, RowFill};
 
     /// Rows of every length, empty ones included, filled in a scrambled
     /// order, come back in push order within each row.
@@ -178,5 +233,37 @@ mod tests {
         let mut fill = RowFill::with_lengths([1].into_iter());
         fill.push(0, 1u8);
         fill.push(0, 2u8);
+    }
+
+    /// Rows of every length, empty ones included, filled on any thread.
+    #[test]
+    fn filled_rows_hold_their_values() {
+        let mut offsets = vec![0];
+        for r in 0..20_000usize {
+            offsets.push(offsets[r] + (r * 7 + 3) % 5);
+        }
+        let values = fill_rows(&offsets, |i, row| (offsets[i]..offsets[i + 1]).for_each(|k| row.push(k * 3 + i)));
+        assert_eq!(values.len(), offsets[20_000]);
+        for (i, w) in offsets.windows(2).enumerate() {
+            assert!((w[0]..w[1]).all(|k| values[k] == k * 3 + i), "row {i}");
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "not filled exactly")]
+    fn a_short_filled_row_is_refused() {
+        let _ = fill_rows(&[0, 2, 3], |i, row| row.push(i));
+    }
+
+    #[test]
+    #[should_panic(expected = "index out of bounds")]
+    fn a_long_filled_row_is_refused() {
+        let _ = fill_rows(&[0, 1, 2], |i, row| (0..=i).for_each(|_| row.push(1u8)));
+    }
+
+    #[test]
+    #[should_panic(expected = "start at 0")]
+    fn offsets_from_elsewhere_are_refused() {
+        let _ = fill_rows(&[1, 2], |_, row| row.push(1u8));
     }
 }

@@ -1,9 +1,10 @@
 //! The sparsity pattern of edge-based operators, built once in O(V + E)
 //! straight from the sorted edge list, without sorting or hashing.
 
-use sprs::CsMat;
+use sprs::{CompressedStorage, CsMat, CsMatView};
 
 use crate::ids::VertexId;
+use crate::rows::fill_rows;
 
 /// Edges (or entries, when filling) between the one being placed and the
 /// one whose memory is asked for ahead: the cotan Laplacian at 470,274
@@ -29,6 +30,9 @@ pub struct EdgePattern {
 impl EdgePattern {
     /// Pattern of `n` vertices and `edges` given as (lo, hi) pairs with
     /// lo < hi, sorted lexicographically (as [`crate::Connectivity::edges`]).
+    ///
+    /// # Panics
+    /// If `edges` are not such pairs, each once, of vertices below `n`.
     pub fn new(n: usize, edges: &[[VertexId; 2]]) -> Self {
         // Row i: lower entries (edges (j, i), j < i, in increasing j since edges
         // are sorted), then the diagonal, then upper entries (edges (i, j)).
@@ -78,51 +82,75 @@ impl EdgePattern {
         for (i, &d) in diag.iter().enumerate() {
             indices[d] = i;
         }
+        // The check of `CsMat::new`, made here so that filling the pattern
+        // (`build`) need not repeat it: beside the cotan weights on two
+        // threads, this side has time to spare.
+        let units = vec![(); indices.len()];
+        if let Err((.., e)) = CsMatView::try_new((n, n), &indptr[..], &indices[..], &units[..]) {
+            panic!("edges that are not sorted (lo, hi) pairs of distinct vertices below {n}: {e}");
+        }
         Self { indptr, indices, diag, slot_edge }
     }
 
     /// The data of the matrix whose entry `(i, j)` for the edge `e` between
-    /// `i` and `j` is `-weight(e, i < j)` and whose diagonal entries make
-    /// each row sum to zero; rows in parallel ([`crate::par::rows`]).
-    /// `weight` reads `reads[e]`, whose entries are asked for [`AHEAD`]
-    /// entries of the matrix ahead: the edges of a row's lower entries are
-    /// far apart.
-    fn fill_directed(&self, reads: &[f64], weight: impl Fn(usize, bool) -> f64 + Sync + Send) -> Vec<f64> {
-        let mut data = vec![0.0; self.indices.len()];
-        crate::par::rows(&mut data, &self.indptr, |i, row| {
+    /// `i` and `j` is `-weight(e, i < j)` and whose diagonal entry is
+    /// `diagonal(i, s)`, `s` the sum of the row's weights in slot order;
+    /// rows in parallel, each written whole without zeroing it first
+    /// ([`fill_rows`]). Whether `i < j` comes from the slot's side of the
+    /// diagonal, not from reading the column. `weight` reads `reads[e]`,
+    /// whose entries are asked for [`AHEAD`] entries of the matrix ahead:
+    /// the edges of a row's lower entries are far apart.
+    fn fill(
+        &self,
+        reads: &[f64],
+        weight: impl Fn(usize, bool) -> f64 + Sync + Send,
+        diagonal: impl Fn(usize, f64) -> f64 + Sync + Send,
+    ) -> Vec<f64> {
+        fill_rows(&self.indptr, |i, row| {
             let first = self.indptr[i];
-            let mut sum = 0.0;
-            for (k, value) in row.iter_mut().enumerate() {
-                let s = first + k;
+            let prefetch = |s: usize| {
                 if let Some(w) = self.slot_edge.get(s + AHEAD).and_then(|&e| reads.get(e as usize)) {
                     crate::hint::prefetch(w);
                 }
-                if s != self.diag[i] {
-                    let w = weight(self.slot_edge[s] as usize, i < self.indices[s]);
-                    *value = -w;
-                    sum += w;
-                }
+            };
+            // Lower entries, the diagonal, upper entries: the upper weights
+            // are read twice, for the diagonal's sum and for their slots.
+            let (lower, upper) = (first..self.diag[i], self.diag[i] + 1..self.indptr[i + 1]);
+            let mut sum = 0.0;
+            for s in lower {
+                prefetch(s);
+                let w = weight(self.slot_edge[s] as usize, false);
+                row.push(-w);
+                sum += w;
             }
-            row[self.diag[i] - first] = sum;
-        });
-        data
+            for s in upper.clone() {
+                prefetch(s);
+                sum += weight(self.slot_edge[s] as usize, true);
+            }
+            row.push(diagonal(i, sum));
+            for s in upper {
+                row.push(-weight(self.slot_edge[s] as usize, true));
+            }
+        })
     }
 
     /// The matrix with this pattern and `data`; the pattern's arrays become
     /// the matrix's (no copy).
     fn build(self, data: Vec<f64>) -> CsMat<f64> {
         let n = self.diag.len();
-        // The pattern is valid by construction (sorted, in range).
-        CsMat::new((n, n), self.indptr, self.indices, data)
+        assert_eq!(data.len(), self.indices.len(), "one value per entry of the pattern");
+        // SAFETY: `EdgePattern::new` checked this structure as `CsMat::new`
+        // would (`sprs`' `check_compressed_structure`), and nothing changes
+        // `indptr` or `indices` after it; `data` has one value per index
+        // (asserted above).
+        unsafe { CsMat::new_unchecked(CompressedStorage::CSR, (n, n), self.indptr, self.indices, data) }
     }
 
     /// Symmetric matrix with `M_ab = M_ba = weights[e]` for edge e = (a, b) and
     /// diagonal `diagonal(i, sum of weights of edges at i)`.
     pub fn symmetric(self, weights: &[f64], diagonal: impl Fn(usize, f64) -> f64 + Sync + Send) -> CsMat<f64> {
-        let mut data = self.fill_directed(weights, |e, _| -weights[e]);
-        for (i, &d) in self.diag.iter().enumerate() {
-            data[d] = diagonal(i, -data[d]);
-        }
+        // Negating is exact: the sum of the negated weights is the negated sum.
+        let data = self.fill(weights, |e, _| -weights[e], |i, negated| diagonal(i, -negated));
         self.build(data)
     }
 
@@ -131,7 +159,7 @@ impl EdgePattern {
     /// diagonal is its row's weight sum, so rows sum to zero:
     /// `(L q)_i = sum_j w_ij (q_i - q_j)`.
     pub fn directed(self, lo_hi: &[f64], hi_lo: &[f64]) -> CsMat<f64> {
-        let data = self.fill_directed(lo_hi, |e, lower| if lower { lo_hi[e] } else { hi_lo[e] });
+        let data = self.fill(lo_hi, |e, lower| if lower { lo_hi[e] } else { hi_lo[e] }, |_, sum| sum);
         self.build(data)
     }
 
