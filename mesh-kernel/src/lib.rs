@@ -21,7 +21,7 @@
 //! | [`hint`] | the processor's prefetch, for memory a loop will read a little later | |
 //! | [`random`] | `SplitMix64`, the one seeded generator (jitter, start blocks, tests) | |
 //! | [`reorder`] | cache-friendly vertex and face orders (a Hilbert curve through the bounding box), with the maps back | |
-//! | [`rows`] | [`rows::RowFill`]: the rows of a compressed sparse layout filled in any order through cursors, without zeroing them first | |
+//! | [`rows`] | [`rows::RowFill`] and [`rows::fill_rows`]: the rows of a compressed sparse layout filled through cursors (pushes in any order, or whole rows in parallel), without zeroing them first | |
 //! | [`shapes`] | procedural shapes with exact ground truth | |
 //! | [`summary`] | [`summary::MeshSummary`]: counts, topology, defects, area, volume and extent in one struct (what `mesh info` prints) | 2.2.2, 2.3 |
 //! | [`submesh`] | a subset of faces, one component or the largest as a mesh of its own, with maps back | |
