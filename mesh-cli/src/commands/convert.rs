@@ -16,8 +16,10 @@ pub struct Args {
     /// Output mesh file; the format comes from its extension.
     output: PathBuf,
     /// Renumber vertices along a Hilbert curve through the bounding box and
-    /// faces by their first vertex (a cache-friendly order: local operators
-    /// run up to 3x faster on subdivided meshes and scans); every attribute
+    /// faces by their smallest new vertex (a cache-friendly order: on a mesh
+    /// in random order local operators run 1.3-4x faster; a mesh already in
+    /// a local order, as Loop subdivision leaves it, gains up to 15% on
+    /// sums over faces and loses 25-50% on its half-edges); every attribute
     /// follows.
     #[arg(long)]
     reorder: bool,
