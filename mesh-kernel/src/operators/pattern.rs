@@ -32,7 +32,8 @@ impl EdgePattern {
     /// lo < hi, sorted lexicographically (as [`crate::Connectivity::edges`]).
     ///
     /// # Panics
-    /// If `edges` are not such pairs, each once, of vertices below `n`.
+    /// If a row would not be strictly increasing (an edge given twice, a
+    /// pair of equal ends, edges out of order) or a vertex is `n` or more.
     pub fn new(n: usize, edges: &[[VertexId; 2]]) -> Self {
         // Row i: lower entries (edges (j, i), j < i, in increasing j since edges
         // are sorted), then the diagonal, then upper entries (edges (i, j)).
@@ -87,7 +88,7 @@ impl EdgePattern {
         // threads, this side has time to spare.
         let units = vec![(); indices.len()];
         if let Err((.., e)) = CsMatView::try_new((n, n), &indptr[..], &indices[..], &units[..]) {
-            panic!("edges that are not sorted (lo, hi) pairs of distinct vertices below {n}: {e}");
+            panic!("edges that make a row unsorted or name a vertex from {n} on: {e}");
         }
         Self { indptr, indices, diag, slot_edge }
     }
@@ -183,5 +184,18 @@ mod tests {
         assert_eq!(dense.row(0).to_vec(), vec![3.0, -1.0, -2.0]);
         assert_eq!(dense.row(1).to_vec(), vec![-10.0, 13.0, -3.0]);
         assert_eq!(dense.row(2).to_vec(), vec![-20.0, -30.0, 50.0]);
+    }
+
+    /// The structure check that the matrices skip is made here: a repeated
+    /// edge, edges out of order in a row, or a pair of equal ends never
+    /// reach a matrix.
+    #[test]
+    fn edges_that_make_unsorted_rows_are_refused() {
+        let cases = [[[0, 1], [0, 1]], [[1, 2], [0, 2]], [[0, 1], [2, 2]]];
+        for edges in cases {
+            let e = edges.map(|[a, b]| [VertexId(a), VertexId(b)]);
+            let refused = std::panic::catch_unwind(|| EdgePattern::new(3, &e)).is_err();
+            assert!(refused, "{edges:?}");
+        }
     }
 }
