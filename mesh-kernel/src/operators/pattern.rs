@@ -160,7 +160,8 @@ impl EdgePattern {
     /// diagonal is its row's weight sum, so rows sum to zero:
     /// `(L q)_i = sum_j w_ij (q_i - q_j)`.
     pub fn directed(self, lo_hi: &[f64], hi_lo: &[f64]) -> CsMat<f64> {
-        let data = self.fill(lo_hi, |e, lower| if lower { lo_hi[e] } else { hi_lo[e] }, |_, sum| sum);
+        // `row_is_lo`: the entry's row is the edge's smaller end, its column the larger.
+        let data = self.fill(lo_hi, |e, row_is_lo| if row_is_lo { lo_hi[e] } else { hi_lo[e] }, |_, sum| sum);
         self.build(data)
     }
 
