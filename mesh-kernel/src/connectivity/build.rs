@@ -4,8 +4,9 @@
 //!
 //! 1. The half-edges are bucketed by their smaller endpoint (a counting
 //!    sort, [`par::group_by_key`]) and each small bucket is sorted by the
-//!    larger endpoint (rows side by side), so equal edges become adjacent
-//!    runs. No hashing.
+//!    larger endpoint (rows side by side, by rank where the processor has
+//!    AVX2: [`bucket_sort`]), so equal edges become adjacent runs. No
+//!    hashing.
 //! 2. One loop numbers the runs as edges and pairs the twins.
 //! 3. The outgoing half-edges of every vertex are gathered (a second
 //!    counting sort), and each vertex's fan is walked and classified, rows
@@ -19,7 +20,7 @@
 
 use std::sync::OnceLock;
 
-use super::{Connectivity, VertexKind};
+use super::{bucket_sort, Connectivity, VertexKind};
 use crate::error::NonManifoldReport;
 use crate::ids::{EdgeId, HalfedgeId, VertexId};
 use crate::par;
@@ -75,11 +76,7 @@ impl<'a> HalfedgeSort<'a> {
                 [entry(0), entry(1), entry(2)]
             },
         );
-        par::rows(&mut sorted, &bucket_offsets, |_, bucket| {
-            if bucket.len() > 1 {
-                bucket.sort_unstable();
-            }
-        });
+        bucket_sort::sort_buckets(&mut sorted, &bucket_offsets);
         Self { corner, bucket_offsets, sorted, packed }
     }
 

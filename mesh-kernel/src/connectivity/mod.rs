@@ -15,6 +15,7 @@
 
 use std::sync::OnceLock;
 
+mod bucket_sort;
 mod build;
 
 pub use build::number_edges;

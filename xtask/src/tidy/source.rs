@@ -10,6 +10,11 @@ use std::path::Path;
 pub const UNSAFE_ALLOWED: &[(&str, usize, &str)] = &[
     ("mesh-kernel/src/operators/corner_batch.rs", 2, "AVX2 build of the corner batches, behind runtime detection"),
     ("mesh-kernel/src/solver/supernodal.rs", 4, "AVX2 and AVX-512 block triangular solves, behind runtime detection"),
+    (
+        "mesh-kernel/src/connectivity/bucket_sort.rs",
+        7,
+        "AVX2 sort of the half-edge buckets by rank, behind runtime detection, and its test",
+    ),
     ("mesh-kernel/src/mesh.rs", 2, "AVX2 build of the faces' validity scan, behind runtime detection"),
     ("mesh-spectral/src/eigen/narrow.rs", 4, "AVX2 builds of the narrow tall products, behind runtime detection"),
     ("mesh-kernel/src/solver/cholesky.rs", 1, "its test of the AVX2 and AVX-512 solves against the portable one"),
