@@ -381,8 +381,6 @@ impl Connectivity {
 pub(super) struct RingIndex {
     /// `(half-edge, slot)` sorted, for rings above [`RingIndex::SCAN`].
     sorted: Vec<(HalfedgeId, u32)>,
-    /// Every `twin(prev(h))` of the ring sorted, likewise.
-    targets: Vec<HalfedgeId>,
 }
 
 impl RingIndex {
@@ -394,19 +392,6 @@ impl RingIndex {
             self.sorted.clear();
             self.sorted.extend(ring.iter().enumerate().map(|(i, s)| (s.out(), i as u32)));
             self.sorted.sort_unstable();
-            self.targets.clear();
-            self.targets.extend(ring.iter().map(|s| s.next()));
-            self.targets.sort_unstable();
-        }
-    }
-
-    /// Whether some `twin(prev(g))` of `ring` is `h`.
-    #[inline]
-    fn is_target(&self, ring: &[Spoke], h: HalfedgeId) -> bool {
-        if ring.len() <= Self::SCAN {
-            ring.iter().any(|s| s.next() == h)
-        } else {
-            self.targets.binary_search(&h).is_ok()
         }
     }
 
@@ -425,13 +410,33 @@ impl RingIndex {
 /// The ring of a vertex none of whose edges is non-manifold or inconsistently
 /// oriented, each outgoing half-edge `h` with `twin(prev(h))`, in
 /// counter-clockwise order into `ordered`, when its faces form one fan:
-/// from the first outgoing half-edge without twin (an open fan; on such a
-/// vertex, the one no `twin(prev(g))` of the ring names) or from `ring[0]`
-/// (a closed fan), rotating h -> twin(prev(h)). The vertex's kind, or `None`
-/// when the walk does not visit the whole ring (several fans).
+/// from its boundary half-edge, the one that no `twin(prev(g))` of the
+/// ring names (an open fan), or from `ring[0]` (a closed fan), rotating
+/// h -> twin(prev(h)). The vertex's kind, or `None` when the walk does not
+/// visit the whole ring (several fans).
+///
+/// One open fan has exactly one spoke without a next, and its boundary
+/// half-edge is the sum of the outgoing half-edges less the sum of the
+/// nexts: found in O(d) without a branch on the ring's order, where a
+/// search of the nexts for every spoke took O(d^2) and most of the walk's
+/// time on meshes in a scan's or a spatial order. A wrong candidate (the
+/// ring is not one fan) cannot pass the walk: a walk that visits every
+/// spoke and ends without a next started at the one spoke no other names.
 fn walk_fan(ring: &[Spoke], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) -> Option<VertexKind> {
-    let open = ring.iter().position(|s| !index.is_target(ring, s.out()));
-    let first = open.unwrap_or(0);
+    let (mut outs, mut nexts, mut ends) = (0u64, 0u64, 0usize);
+    for s in ring {
+        let has_next = s.next().is_valid();
+        outs = outs.wrapping_add(u64::from(s.out().0));
+        nexts = nexts.wrapping_add(if has_next { u64::from(s.next().0) } else { 0 });
+        ends += usize::from(!has_next);
+    }
+    let open = match ends {
+        0 => false,
+        1 => true,
+        _ => return None,
+    };
+    let first =
+        if open { index.position(ring, HalfedgeId(u32::try_from(outs.wrapping_sub(nexts)).ok()?))? } else { 0 };
     ordered.clear();
     let mut i = first;
     loop {
@@ -439,10 +444,10 @@ fn walk_fan(ring: &[Spoke], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) ->
         let t = ring[i].next();
         let whole = ordered.len() == ring.len();
         if !t.is_valid() {
-            return (open.is_some() && whole).then_some(VertexKind::Boundary);
+            return (open && whole).then_some(VertexKind::Boundary);
         }
         if t == ring[first].out() {
-            return (open.is_none() && whole).then_some(VertexKind::Interior);
+            return (!open && whole).then_some(VertexKind::Interior);
         }
         if whole {
             return None;
