@@ -19,7 +19,7 @@ pub struct Args {
     /// faces by their smallest new vertex (a cache-friendly order: on a mesh
     /// in random order local operators run 1.3-4x faster; a mesh already in
     /// a local order, as Loop subdivision leaves it, gains up to 15% on
-    /// sums over faces and loses 25-50% on its half-edges); every attribute
+    /// sums over faces and builds its half-edges as fast); every attribute
     /// follows.
     #[arg(long)]
     reorder: bool,
