@@ -266,7 +266,7 @@ fn threads() -> usize {
 /// slot by one of them (relaxed stores: plain writes on x86); [`plain`]
 /// turns them back into values once every thread is done.
 pub fn atomic_slots(len: usize, value: u32) -> Vec<AtomicU32> {
-    (0..len).map(|_| AtomicU32::new(value)).collect()
+    map(len, |_| AtomicU32::new(value))
 }
 
 /// The values of [`atomic_slots`] once every writer is done, collected in
@@ -275,9 +275,11 @@ pub fn plain(slots: Vec<AtomicU32>) -> Vec<u32> {
     slots.into_iter().map(AtomicU32::into_inner).collect()
 }
 
-/// `len` zeroed 64-bit [`atomic_slots`].
+/// `len` zeroed 64-bit [`atomic_slots`]. Both are made by a [`map`], on
+/// several threads: a [`group_by_key`]'s 2,614,242 slots took 1.4-1.5 ms
+/// on two threads instead of 2.0-2.3 in one loop (2026-12-07).
 fn atomic_slots64(len: usize) -> Vec<AtomicU64> {
-    (0..len).map(|_| AtomicU64::new(0)).collect()
+    map(len, |_| AtomicU64::new(0))
 }
 
 /// Fewest faces per part of a [`scatter`] on several threads.
