@@ -229,7 +229,6 @@ struct Fans<'a> {
 #[derive(Default)]
 struct Scratch {
     fans_of: UnionFind,
-    ordered: Vec<HalfedgeId>,
     index: RingIndex,
 }
 
@@ -248,8 +247,7 @@ impl Fans<'_> {
         // fan, walked counter-clockwise by h -> twin(prev(h)) from its
         // boundary half-edge (no twin) if it has one.
         if !self.nonmanifold_edge_vertex[v] && !self.unoriented_vertex[v] {
-            if let Some(kind) = walk_fan(ring, &s.index, &mut s.ordered) {
-                out.copy_from_slice(&s.ordered);
+            if let Some(kind) = walk_fan(ring, &s.index, out) {
                 return (kind, false);
             }
         }
@@ -409,11 +407,12 @@ impl RingIndex {
 
 /// The ring of a vertex none of whose edges is non-manifold or inconsistently
 /// oriented, each outgoing half-edge `h` with `twin(prev(h))`, in
-/// counter-clockwise order into `ordered`, when its faces form one fan:
-/// from its boundary half-edge, the one that no `twin(prev(g))` of the
-/// ring names (an open fan), or from `ring[0]` (a closed fan), rotating
-/// h -> twin(prev(h)). The vertex's kind, or `None` when the walk does not
-/// visit the whole ring (several fans).
+/// counter-clockwise order into `ordered` (as long as the ring), when its
+/// faces form one fan: from its boundary half-edge, the one that no
+/// `twin(prev(g))` of the ring names (an open fan), or from `ring[0]` (a
+/// closed fan), rotating h -> twin(prev(h)). The vertex's kind, or `None`
+/// when the walk does not visit the whole ring (several fans; `ordered`
+/// then holds part of a walk).
 ///
 /// One open fan has exactly one spoke without a next, and its boundary
 /// half-edge is the sum of the outgoing half-edges less the sum of the
@@ -422,7 +421,7 @@ impl RingIndex {
 /// time on meshes in a scan's or a spatial order. A wrong candidate (the
 /// ring is not one fan) cannot pass the walk: a walk that visits every
 /// spoke and ends without a next started at the one spoke no other names.
-fn walk_fan(ring: &[Spoke], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) -> Option<VertexKind> {
+fn walk_fan(ring: &[Spoke], index: &RingIndex, ordered: &mut [HalfedgeId]) -> Option<VertexKind> {
     let (mut outs, mut nexts, mut ends) = (0u64, 0u64, 0usize);
     for s in ring {
         let has_next = s.next().is_valid();
@@ -437,12 +436,11 @@ fn walk_fan(ring: &[Spoke], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) ->
     };
     let first =
         if open { index.position(ring, HalfedgeId(u32::try_from(outs.wrapping_sub(nexts)).ok()?))? } else { 0 };
-    ordered.clear();
     let mut i = first;
-    loop {
-        ordered.push(ring[i].out());
+    for (walked, slot) in ordered.iter_mut().enumerate() {
+        *slot = ring[i].out();
         let t = ring[i].next();
-        let whole = ordered.len() == ring.len();
+        let whole = walked + 1 == ring.len();
         if !t.is_valid() {
             return (open && whole).then_some(VertexKind::Boundary);
         }
@@ -454,4 +452,5 @@ fn walk_fan(ring: &[Spoke], index: &RingIndex, ordered: &mut Vec<HalfedgeId>) ->
         }
         i = index.position(ring, t)?;
     }
+    None
 }
