@@ -29,6 +29,7 @@ use crate::par;
 
 /// The longest run sorted by rank; longer ones (vertices of valence above
 /// 16 on a closed mesh) are sorted by comparison.
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 pub(super) const RANKED: usize = 16;
 
 /// Sorts each run `keys[offsets[i]..offsets[i + 1]]` of distinct keys in
