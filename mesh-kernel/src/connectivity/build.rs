@@ -118,8 +118,8 @@ impl<'a> HalfedgeSort<'a> {
     /// bucket, then each face finding its half-edges' entries by rank in
     /// their buckets, writing in face order) wrote no line from two
     /// threads, but read three at random per half-edge: the edge numbering
-    /// alone took 104-109 ms against 34-35 on one thread and 54-56 against
-    /// 24-25 on two, at 437,645 and 470,274 vertices (2026-12-07).
+    /// alone took 104-109 ms against 33.5-35 on one thread and 53.5-56
+    /// against 24-25.5 on two, at 437,645 and 470,274 vertices (2026-12-07).
     fn number(&self, mut twin: Option<&mut [HalfedgeId]>) -> Numbering {
         let hi_of = |x: u64| (x >> 32) as u32;
         let nh = self.corner.len();
