@@ -20,8 +20,10 @@
 //! (BENCHMARKS.md, "Vertex order on a shuffled mesh"). The half-edges and
 //! the midpoint upsample ran 25-50% and 20-45% slower after it until
 //! their buckets were sorted by rank and their fans' ends found without a
-//! search; they now build as fast in either order (the half-edges in
-//! 100-107 ms against 106-120 at 470,274 vertices, one core, 2026-12-07).
+//! search; they now build as fast in either order (at 470,274 vertices on
+//! one core, 2026-12-07: the half-edges in 100-107 ms against 106-120 on
+//! one machine, the upsample in 74.2-75.7 ms against 75.1-75.4 on
+//! another).
 //!
 //! Renumbering never happens behind a caller's back: a reordered mesh is a
 //! new mesh with its own indices. Whether it pays depends on how often the
