@@ -46,6 +46,7 @@ mod problem;
 mod quality;
 mod shift_invert;
 pub(crate) mod tall;
+mod tile;
 
 use std::fmt;
 use std::time::Instant;

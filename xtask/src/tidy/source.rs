@@ -17,6 +17,7 @@ pub const UNSAFE_ALLOWED: &[(&str, usize, &str)] = &[
     ),
     ("mesh-kernel/src/mesh.rs", 2, "AVX2 build of the faces' validity scan, behind runtime detection"),
     ("mesh-spectral/src/eigen/narrow.rs", 4, "AVX2 builds of the narrow tall products, behind runtime detection"),
+    ("mesh-spectral/src/eigen/tile.rs", 3, "the AVX-512 kernel of the basis update, behind runtime detection"),
     ("mesh-kernel/src/solver/cholesky.rs", 1, "its test of the AVX2 and AVX-512 solves against the portable one"),
     (
         "mesh-kernel/src/par.rs",
