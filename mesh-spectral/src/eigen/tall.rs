@@ -59,7 +59,7 @@ fn chunk_rows(width: usize) -> usize {
 }
 
 /// Rows per chunk of [`mul_gram`] with the AVX-512 kernel: whole tiles of
-/// 24 rows, the chunk's output (up to 320 KiB at 32 columns) still in L2
+/// 24 rows, the chunk's output (240 KiB at 32 columns) still in L2
 /// for its Gram matrix.
 const TILE_ROWS: usize = 960;
 
@@ -241,7 +241,7 @@ pub(crate) fn mul_gram(
 
 /// `v[:, ..p] = v S` in place (v: n x s, S: s x p, p <= s), by chunks of
 /// 256 rows so that only a small buffer is needed. (With 512 rows, whose
-/// buffer columns are 4 KiB apart, faer's kernel ran at 52-56 GFlop/s on
+/// buffer columns are 4 KiB apart, faer's kernel ran at 52-55 GFlop/s on
 /// one core for `S` 436 x 240 and 69-71 for 536 x 336 or 300 x 200, with
 /// 256 rows at 68-70 on all three.)
 pub(crate) fn rotate_in_place(v: MatMut<'_, f64>, s: MatRef<'_, f64>) {

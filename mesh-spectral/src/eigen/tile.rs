@@ -9,12 +9,12 @@
 //! broadcasts of `c` and 24 multiply-adds. `v` is read where it is (no
 //! copy), the next tile's rows asked for ahead. Measured on one core of an
 //! Intel Xeon (AVX-512) VM at 470,274 rows, `v` 504 columns and `c` 32:
-//! 38-41 GFlop/s against faer's 26-31 by chunks of rows; `c` 8 columns
-//! wide, 14-16 against 8-9. With 40 columns in `v` faer was as fast or
-//! faster (28 against 31 GFlop/s, 100 columns: 33 against 32), so
+//! 40-41 GFlop/s against faer's 27-31 by chunks of rows; `c` 8 columns
+//! wide, 15.7-16.6 against 8.7-9.2. With 40 columns in `v` faer was as
+//! fast or faster (28 against 31 GFlop/s, 100 columns: 33 against 32), so
 //! products shallower than [`MIN_DEPTH`] stay with faer; so do those wider
 //! than [`MAX_WIDTH`], where faer's kernel, which reuses each value of `v`
-//! across many more columns, ran at 54-68 GFlop/s against 36-54 (`v` 436
+//! across many more columns, ran at 55-68 GFlop/s against 36-53 (`v` 436
 //! columns, `c` 240).
 
 use faer::{MatMut, MatRef};
