@@ -81,9 +81,10 @@ impl ShortestPaths {
 /// Works on any triangle soup (non-manifold, disconnected, degenerate).
 /// Duplicate sources are allowed (the first one labels the vertex).
 ///
-/// Builds the edge graph for this one call (O(V + F), about as long as the
-/// search itself on a mesh larger than the cache); for several queries on
-/// one mesh, [`DijkstraGraph`] builds it once. Cost O((V + E) log V).
+/// Builds the edge graph for this one call (O(V + E), from the cached
+/// connectivity's edges, about half as long as the search itself on a mesh
+/// larger than the cache); for several queries on one mesh,
+/// [`DijkstraGraph`] builds it once. Cost O((V + E) log V).
 ///
 /// ```
 /// use mesh_kernel::{shapes, VertexId};

@@ -90,6 +90,11 @@ fn check_rings(m: &TriMesh) {
             VertexKind::Isolated => assert!(ring.is_empty()),
             VertexKind::NonManifold => {}
         }
+        // The valence counts each neighbour once, whatever the fan.
+        let mut distinct = ring.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(c.valence(v), distinct.len());
     }
 }
 
@@ -238,6 +243,11 @@ proptest! {
         let m = TriMesh::new(vec![DVec3::ZERO; 9], faces.clone()).unwrap();
         for v in 0..9 {
             prop_assert_eq!(m.connectivity().vertex_kind(VertexId(v)), brute_force_kind(&faces, v), "vertex {}", v);
+            // The valence is the number of distinct other corners of v's faces.
+            let mut ring: Vec<u32> = faces.iter().filter(|f| f.contains(&v)).flatten().copied().filter(|&w| w != v).collect();
+            ring.sort_unstable();
+            ring.dedup();
+            prop_assert_eq!(m.connectivity().valence(VertexId(v)), ring.len(), "vertex {}", v);
         }
         check_halfedges(&m);
         // Rings are ordered where the orientation is consistent.

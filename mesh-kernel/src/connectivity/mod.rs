@@ -218,13 +218,27 @@ impl Connectivity {
         out.iter().map(|&h| self.dest(h)).chain(closing).chain(extra)
     }
 
-    /// Number of neighbours of `v` (the chapter's valence |N(p_i)|).
+    /// Number of distinct neighbours of `v` (the chapter's valence
+    /// |N(p_i)|), the number of edges at `v`. O(1), but O(d log d) on a
+    /// non-manifold vertex of `d` outgoing half-edges.
+    ///
+    /// A single fan (through edges of two faces) whose edges have one or
+    /// two faces is a cycle or a path of faces, each with two edges at `v`:
+    /// a cycle of `d` faces has `d` edges at `v`, a path `d + 1` (its two
+    /// ends on boundary edges).
     pub fn valence(&self, v: VertexId) -> usize {
         match self.vertex_kind[v.idx()] {
             VertexKind::Isolated => 0,
             VertexKind::Interior => self.outgoing(v).len(),
             VertexKind::Boundary => self.outgoing(v).len() + 1,
-            VertexKind::NonManifold => self.neighbors(v).count(),
+            VertexKind::NonManifold => {
+                let out = self.outgoing(v);
+                let mut ring: Vec<VertexId> =
+                    out.iter().flat_map(|&h| [self.dest(h), self.opposite_vertex(h)]).collect();
+                ring.sort_unstable();
+                ring.dedup();
+                ring.len()
+            }
         }
     }
 
@@ -415,6 +429,8 @@ mod tests {
         // Three triangles on edge 0-1.
         let c = conn(5, &[[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
         assert_eq!(c.non_manifold_report().edges, vec![EdgeId(0)]);
+        // Vertex 1 twice among the ends of 0's outgoing half-edges.
+        assert_eq!((c.valence(VertexId(0)), c.valence(VertexId(1)), c.valence(VertexId(2))), (4, 4, 2));
         assert!(c.boundary_loops().is_err());
         assert_eq!(c.genus(), None);
     }
