@@ -11,6 +11,7 @@
 //! built in memory and never written into the repository.
 
 mod curvature;
+mod dijkstra;
 mod heat;
 mod param;
 mod spectral;
@@ -111,8 +112,13 @@ fn dragon_path() -> Res<PathBuf> {
 type Part = (&'static str, fn(&mut Validator, &ScaleMeshes));
 
 /// Every part, in the order they run.
-const PARTS: &[Part] =
-    &[("curvature", curvature::run), ("spectral", spectral::run), ("param", param::run), ("heat", heat::run)];
+const PARTS: &[Part] = &[
+    ("curvature", curvature::run),
+    ("spectral", spectral::run),
+    ("param", param::run),
+    ("heat", heat::run),
+    ("dijkstra", dijkstra::run),
+];
 
 /// Runs every scale check.
 pub fn run(v: &mut Validator) {
