@@ -1,6 +1,6 @@
 //! Dijkstra on the real scans against a plain one: mesh-geodesic's
 //! `dijkstra` (graph built in the call) and a `DijkstraGraph` query, from a
-//! vertex of the largest component, against a binary-heap Dijkstra over
+//! vertex of the largest component (by faces), against a binary-heap Dijkstra over
 //! neighbour lists read straight from the faces (no connectivity, no edge
 //! graph of ours), on the full dragon scan (151 components, zero-area
 //! faces), the dirty dragon scan (non-manifold edges, duplicate faces) and
@@ -62,15 +62,12 @@ pub fn run(v: &mut Validator, meshes: &ScaleMeshes) {
     }
 }
 
-/// A vertex of the component with the most vertices (through shared faces).
+/// The first vertex of the component with the most faces
+/// ([`mesh_kernel::Components::largest`]); vertex 0 on a mesh without faces.
 fn largest_component_vertex(m: &TriMesh) -> VertexId {
-    let comp = &m.connectivity().components().vertex_component;
-    let mut size = vec![0usize; m.connectivity().components().count];
-    for &c in comp.iter().filter(|&&c| c != u32::MAX) {
-        size[c as usize] += 1;
-    }
-    let largest = (0..size.len()).max_by_key(|&c| size[c]).unwrap_or(0) as u32;
-    VertexId::new(comp.iter().position(|&c| c == largest).unwrap_or(0))
+    let components = m.connectivity().components();
+    let largest = components.largest().map_or(u32::MAX, |c| c as u32);
+    VertexId::new(components.vertex_component.iter().position(|&c| c == largest).unwrap_or(0))
 }
 
 /// The other corners of each vertex's faces (some listed more than once).
